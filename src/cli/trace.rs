@@ -1,0 +1,93 @@
+//! `accelbench trace`: trace a `.rays` file with one index, write the `.hits` file, and report
+//! build time, rays/s and tests per ray.
+
+use super::{parse_threads, with_threads};
+use crate::geometry::TriangleKernelKind;
+use crate::index::{Counters, IndexSpec, build_index};
+use crate::rays::{read_rays, write_hits};
+use crate::scene::load_scene;
+use anyhow::Context;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Debug, clap::Args)]
+pub struct TraceArgs {
+    /// An .obj path or a built-in scene name.
+    #[arg(long)]
+    scene: String,
+    /// Index name with optional parameters, e.g. `brute` or `bvh:leaf_size=4`.
+    #[arg(long, default_value = "brute")]
+    index: IndexSpec,
+    /// Input .rays file.
+    #[arg(long)]
+    rays: PathBuf,
+    /// Output .hits file (optional).
+    #[arg(long)]
+    hits: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = parse_threads)]
+    threads: Option<usize>,
+    /// Triangle kernel every index uses.
+    #[arg(long, default_value = "watertight", value_parser = parse_kernel)]
+    kernel: TriangleKernelKind,
+}
+
+fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
+    TriangleKernelKind::parse(s).ok_or_else(|| {
+        let names: Vec<_> = TriangleKernelKind::ALL.iter().map(|k| k.name()).collect();
+        format!("unknown kernel '{s}': choose one of {}", names.join(", "))
+    })
+}
+
+pub fn run(a: TraceArgs) -> anyhow::Result<()> {
+    let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
+    let rays = read_rays(&a.rays)?;
+    let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
+    let geom = scene.geometry();
+    let index = with_threads(threads, || build_index(&a.index, &geom, a.kernel))??;
+    let mut hits = vec![None; rays.len()];
+    let start = Instant::now();
+    with_threads(threads, || index.closest_hits(&rays, &mut hits))?;
+    let secs = start.elapsed().as_secs_f64();
+    // Counting pass, separate from the timed one.
+    let mut counted = vec![None; rays.len()];
+    let mut per_ray = vec![Counters::default(); rays.len()];
+    with_threads(threads, || {
+        index.closest_hits_counted(&rays, &mut counted, &mut per_ray)
+    })?;
+    let total: Counters = per_ray.iter().copied().sum();
+    let n = rays.len().max(1) as f64;
+    if let Some(path) = &a.hits {
+        write_hits(path, &hits)?;
+    }
+    let info = index.info();
+    println!(
+        "scene:            {} ({} primitives)",
+        scene.name,
+        scene.len()
+    );
+    println!("index:            {} {}", index.name(), index.params());
+    println!("kernel:           {}", a.kernel);
+    println!("threads:          {threads}");
+    println!(
+        "build:            {:.3} ms",
+        info.build_time.as_secs_f64() * 1e3
+    );
+    println!("memory:           {} bytes", info.memory_bytes);
+    println!("rays:             {}", rays.len());
+    println!("hits:             {}", hits.iter().flatten().count());
+    println!("trace:            {:.3} ms", secs * 1e3);
+    println!("Mrays/s:          {:.3}", rays.len() as f64 / secs / 1e6);
+    println!(
+        "Mtests/s:         {:.3}",
+        total.prim_tests as f64 / secs / 1e6
+    );
+    println!("tests/ray:        {:.2}", total.prim_tests as f64 / n);
+    println!("node visits/ray:  {:.2}", total.node_visits as f64 / n);
+    println!("box tests/ray:    {:.2}", total.box_tests as f64 / n);
+    anyhow::ensure!(
+        counted == hits,
+        "the counting pass returned different hits from the timed pass (index bug)"
+    );
+    Ok(())
+}

@@ -1,0 +1,19 @@
+//! Geometry: rays, boxes, hits and the ray–primitive kernels every index shares.
+
+mod aabb;
+mod aabb_kernel;
+pub mod float;
+mod hit;
+pub mod overlap;
+mod plane;
+mod ray;
+pub mod sphere;
+pub mod triangle;
+
+pub use aabb::{Aabb, SLAB_FAR_SCALE};
+pub use aabb_kernel::intersect_box;
+pub use hit::{ClosestHit, Hit, closer};
+pub use plane::intersect_plane;
+pub use ray::{Ray, RayError, Shear};
+pub use sphere::Sphere;
+pub use triangle::{Triangle, TriangleKernel, TriangleKernelKind};

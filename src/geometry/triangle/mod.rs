@@ -1,0 +1,235 @@
+//! Triangles and the four ray–triangle kernels.
+//!
+//! Every kernel is a pure function `(triangle, ray, t_max) -> Option<t>` that reports a hit only
+//! for `t` in the closed interval `[ray.t_min, t_max]`. The `t` it computes does not depend on
+//! `t_max` (only the acceptance does), so indices that pass a shrinking `t_max` get the same bits
+//! as brute force.
+
+mod moller_trumbore;
+mod parametric;
+mod plane_edges;
+mod watertight;
+
+pub use moller_trumbore::MollerTrumbore;
+pub use parametric::Parametric;
+pub use plane_edges::PlaneEdges;
+pub use watertight::Watertight;
+
+use super::{Aabb, Ray};
+use glam::Vec3A;
+use serde::{Deserialize, Serialize};
+
+/// A triangle by its three corners, in the winding of the source file.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Triangle {
+    pub v: [Vec3A; 3],
+}
+
+impl Triangle {
+    pub fn new(a: Vec3A, b: Vec3A, c: Vec3A) -> Triangle {
+        Triangle { v: [a, b, c] }
+    }
+
+    #[inline]
+    pub fn bounds(&self) -> Aabb {
+        Aabb {
+            min: self.v[0].min(self.v[1]).min(self.v[2]),
+            max: self.v[0].max(self.v[1]).max(self.v[2]),
+        }
+    }
+
+    /// Geometric normal `(v1 - v0) x (v2 - v0)`, not normalized (length = twice the area).
+    #[inline]
+    pub fn normal_unnormalized(&self) -> Vec3A {
+        (self.v[1] - self.v[0]).cross(self.v[2] - self.v[0])
+    }
+
+    /// Unit geometric normal; zero for a degenerate triangle.
+    pub fn normal(&self) -> Vec3A {
+        self.normal_unnormalized().normalize_or_zero()
+    }
+
+    pub fn area(&self) -> f32 {
+        0.5 * self.normal_unnormalized().length()
+    }
+
+    /// `true` for a zero-area triangle (collinear or coincident corners).
+    pub fn is_degenerate(&self) -> bool {
+        self.normal_unnormalized() == Vec3A::ZERO
+    }
+
+    /// Barycentric coordinates `(b0, b1, b2)` of the point `p` (assumed in the plane), for the
+    /// final hit only. Zero for a degenerate triangle.
+    pub fn barycentrics(&self, p: Vec3A) -> Vec3A {
+        let n = self.normal_unnormalized();
+        let nn = n.length_squared();
+        if nn == 0.0 {
+            return Vec3A::ZERO;
+        }
+        let b1 = (p - self.v[0]).cross(self.v[2] - self.v[0]).dot(n) / nn;
+        let b2 = (self.v[1] - self.v[0]).cross(p - self.v[0]).dot(n) / nn;
+        Vec3A::new(1.0 - b1 - b2, b1, b2)
+    }
+}
+
+/// A ray–triangle kernel. Implementors are zero-sized, so the choice is made at compile time and
+/// a traversal monomorphized for one kernel pays no dispatch.
+pub trait TriangleKernel: Copy + Default + Send + Sync + 'static {
+    /// The name used on the command line and in reports.
+    const NAME: &'static str;
+    /// `Some(t)` when the ray hits the triangle at `t` in `[ray.t_min, t_max]`.
+    fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32>;
+}
+
+/// The selectable triangle kernels (run-time name of a [`TriangleKernel`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TriangleKernelKind {
+    PlaneEdges,
+    Parametric,
+    MollerTrumbore,
+    #[default]
+    Watertight,
+}
+
+impl TriangleKernelKind {
+    pub const ALL: [TriangleKernelKind; 4] = [
+        TriangleKernelKind::PlaneEdges,
+        TriangleKernelKind::Parametric,
+        TriangleKernelKind::MollerTrumbore,
+        TriangleKernelKind::Watertight,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            TriangleKernelKind::PlaneEdges => PlaneEdges::NAME,
+            TriangleKernelKind::Parametric => Parametric::NAME,
+            TriangleKernelKind::MollerTrumbore => MollerTrumbore::NAME,
+            TriangleKernelKind::Watertight => Watertight::NAME,
+        }
+    }
+
+    /// Parses a kernel name as printed by [`TriangleKernelKind::name`].
+    pub fn parse(s: &str) -> Option<TriangleKernelKind> {
+        Self::ALL.into_iter().find(|k| k.name() == s)
+    }
+
+    /// Runs the selected kernel (for tools that pick the kernel per call, not for hot loops).
+    pub fn intersect(self, tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
+        match self {
+            TriangleKernelKind::PlaneEdges => PlaneEdges::intersect(tri, ray, t_max),
+            TriangleKernelKind::Parametric => Parametric::intersect(tri, ray, t_max),
+            TriangleKernelKind::MollerTrumbore => MollerTrumbore::intersect(tri, ray, t_max),
+            TriangleKernelKind::Watertight => Watertight::intersect(tri, ray, t_max),
+        }
+    }
+}
+
+impl std::fmt::Display for TriangleKernelKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Accepts `t` when it lies in `[ray.t_min, t_max]` (false for NaN).
+#[inline(always)]
+pub(crate) fn in_interval(t: f32, ray: &Ray, t_max: f32) -> Option<f32> {
+    (t >= ray.t_min && t <= t_max).then_some(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn tri() -> Triangle {
+        Triangle::new(
+            Vec3A::new(0.0, 0.0, 2.0),
+            Vec3A::new(4.0, 0.0, 2.0),
+            Vec3A::new(0.0, 4.0, 2.0),
+        )
+    }
+
+    fn all(ray: &Ray) -> [Option<f32>; 4] {
+        TriangleKernelKind::ALL.map(|k| k.intersect(&tri(), ray, ray.t_max))
+    }
+
+    #[test]
+    fn hand_computed_hit_for_every_kernel() {
+        // From (1,1,0) along +z the plane z=2 is reached at t=2 (t in units of dir: dir = 0.5 z
+        // gives t = 4).
+        let r = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), Vec3::Z).unwrap();
+        for (k, t) in TriangleKernelKind::ALL.iter().zip(all(&r)) {
+            assert_eq!(t, Some(2.0), "{k}");
+        }
+        let r = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), Vec3::Z * 0.5).unwrap();
+        for (k, t) in TriangleKernelKind::ALL.iter().zip(all(&r)) {
+            assert_eq!(t, Some(4.0), "{k}");
+        }
+        // From the other side, both windings hit (no culling).
+        let r = Ray::infinite(Vec3::new(1.0, 1.0, 5.0), -Vec3::Z).unwrap();
+        for (k, t) in TriangleKernelKind::ALL.iter().zip(all(&r)) {
+            assert_eq!(t, Some(3.0), "{k}");
+        }
+    }
+
+    #[test]
+    fn misses_outside_behind_parallel_and_beyond_t_max() {
+        let outside = Ray::infinite(Vec3::new(3.0, 3.0, 0.0), Vec3::Z).unwrap();
+        let behind = Ray::infinite(Vec3::new(1.0, 1.0, 3.0), Vec3::Z).unwrap();
+        let parallel = Ray::infinite(Vec3::new(-1.0, 1.0, 2.0), Vec3::X).unwrap();
+        let short = Ray::new(Vec3::new(1.0, 1.0, 0.0), Vec3::Z, 0.0, 1.5).unwrap();
+        for r in [outside, behind, parallel, short] {
+            for (k, t) in TriangleKernelKind::ALL.iter().zip(all(&r)) {
+                assert_eq!(t, None, "{k} {r:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn kernels_agree_inside_and_outside() {
+        // Deterministic pseudo-random rays clearly inside or clearly outside the triangle.
+        let mut s = 12345u64;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 40) as f32) / (1u64 << 24) as f32
+        };
+        let t = tri();
+        for _ in 0..2000 {
+            let (b1, b2) = (next(), next());
+            let o = Vec3::new(next() * 8.0 - 4.0, next() * 8.0 - 4.0, -3.0);
+            let target = t.v[0] + (t.v[1] - t.v[0]) * b1 + (t.v[2] - t.v[0]) * b2;
+            let inside = b1 + b2 < 0.98 && b1 > 0.02 && b2 > 0.02;
+            let outside = b1 + b2 > 1.02;
+            if !inside && !outside {
+                continue;
+            }
+            let r = Ray::infinite(o, Vec3::from(target) - o).unwrap();
+            for (k, hit) in TriangleKernelKind::ALL.iter().zip(all(&r)) {
+                assert_eq!(hit.is_some(), inside, "{k} b=({b1},{b2})");
+                if let Some(t) = hit {
+                    assert!((t - 1.0).abs() < 1e-4, "{k}: t={t}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn barycentrics_and_degenerate() {
+        let b = tri().barycentrics(Vec3A::new(1.0, 2.0, 2.0));
+        assert!((b - Vec3A::new(0.25, 0.25, 0.5)).abs().max_element() < 1e-6);
+        let d = Triangle::new(Vec3A::ZERO, Vec3A::X, Vec3A::X * 2.0);
+        assert!(d.is_degenerate());
+        assert_eq!(d.area(), 0.0);
+    }
+
+    #[test]
+    fn kernel_names_round_trip() {
+        for k in TriangleKernelKind::ALL {
+            assert_eq!(TriangleKernelKind::parse(k.name()), Some(k));
+        }
+        assert_eq!(TriangleKernelKind::parse("nope"), None);
+    }
+}

@@ -1,0 +1,80 @@
+//! Acceleration structures behind one trait, and the run-time registry of them.
+//!
+//! An [`Index`] is built from a [`Geometry`] (bounds, centroids, overlap tests), stores primitive
+//! ids, and answers closest-hit and any-hit queries by calling the geometry's shared kernel.
+//! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
+
+mod brute;
+mod registry;
+mod stats;
+
+pub use brute::BruteForce;
+pub use registry::{
+    BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,
+};
+pub use stats::{Counters, NoStats, Stats};
+
+use crate::geometry::{Hit, Ray};
+use crate::scene::Geometry;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use std::fmt::Debug;
+use std::time::Duration;
+use thiserror::Error;
+
+/// Why an index could not be built.
+#[derive(Debug, Error)]
+pub enum BuildError {
+    #[error("invalid parameters for index '{index}': {message}")]
+    Params { index: String, message: String },
+    #[error("unknown index '{0}': choose one of {1}")]
+    UnknownIndex(String, String),
+    #[error("cannot build an index over an empty scene")]
+    EmptyScene,
+    #[error("index '{index}' cannot be built: {message}")]
+    Failed { index: String, message: String },
+}
+
+/// Size and shape of a built index, for reports.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct IndexInfo {
+    /// All nodes (or cells), leaves included.
+    pub nodes: usize,
+    /// Leaves (or non-empty cells).
+    pub leaves: usize,
+    /// Maximum depth (1 for a flat structure).
+    pub depth: usize,
+    /// Heap bytes the index owns (nodes, cell arrays, primitive id arrays), excluding the scene.
+    pub memory_bytes: usize,
+    /// Primitive references stored (an id in a leaf or cell counts once per leaf or cell).
+    pub prim_refs: usize,
+    /// Build time, measured by the registry around [`Index::build`].
+    pub build_time: Duration,
+    /// Structure-specific figures (name, value), e.g. `("empty_cells", 0.4)`.
+    pub extra: Vec<(String, f64)>,
+}
+
+/// An acceleration structure.
+///
+/// Contract: for every valid ray, [`Index::closest_hit`] returns exactly what [`BruteForce`]
+/// returns (same primitive, bit-identical `t`, ties at equal `t` to the lowest primitive id), and
+/// [`Index::any_hit`] returns `closest_hit(..).is_some()`. Queries never allocate.
+pub trait Index: Sized + Send + Sync + 'static {
+    /// Typed build parameters. `Deserialize` with unknown fields rejected, so parameters can
+    /// come from the command line (`bvh:leaf_size=4`) and scene files; `Default` is the preset
+    /// the suite uses.
+    type Params: Default + Clone + Debug + Serialize + DeserializeOwned + Send + Sync;
+
+    /// Builds the index over `geom`. Fails with a clear error on absurd parameters.
+    fn build<G: Geometry>(geom: &G, params: &Self::Params) -> Result<Self, BuildError>;
+
+    /// The closest hit in `[ray.t_min, ray.t_max]`.
+    fn closest_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S)
+    -> Option<Hit>;
+
+    /// Whether any primitive is hit in `[ray.t_min, ray.t_max]` (stops at the first).
+    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool;
+
+    /// Size and shape (the registry fills in `build_time`).
+    fn info(&self) -> IndexInfo;
+}

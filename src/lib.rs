@@ -1,0 +1,14 @@
+//! accelbench: a benchmark suite for ray-casting acceleration structures.
+//!
+//! - [`geometry`]: rays, boxes, hits and the shared ray–primitive kernels.
+//! - [`scene`]: scenes (OBJ, generators), and the [`scene::Geometry`] interface indices use.
+//! - [`camera`] and [`rays`]: the pinhole camera, the protocol's ray sets and ray/hit files.
+//! - [`index`]: the [`index::Index`] trait, brute force (the reference) and the registry.
+//! - [`cli`]: the command line (a thin layer over the library).
+
+pub mod camera;
+pub mod cli;
+pub mod geometry;
+pub mod index;
+pub mod rays;
+pub mod scene;

@@ -1,0 +1,11 @@
+//! Ray sets and the `.rays`/`.hits` interchange files of `../shared/PROTOCOL.md`.
+
+mod file;
+mod sets;
+mod splitmix;
+
+pub use file::{
+    RayFileError, ray_to_record, read_hits, read_rays, read_rays_raw, write_hits, write_rays,
+};
+pub use sets::{RaySetKind, incoherent_rays, primary_rays};
+pub use splitmix::SplitMix64;

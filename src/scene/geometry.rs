@@ -1,0 +1,206 @@
+//! The primitive interface indices are built from and traverse: bounds, centroids, the shared
+//! kernel, and conservative overlap with a box. Monomorphized per primitive mix and triangle
+//! kernel, so a triangle-only scene never pays for a sphere branch and the kernel choice costs no
+//! dispatch.
+
+use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
+use crate::geometry::sphere::intersect_algebraic;
+use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
+use crate::geometry::{Aabb, Ray, Sphere, Triangle, TriangleKernel, TriangleKernelKind};
+use glam::Vec3A;
+use std::marker::PhantomData;
+use std::sync::Arc;
+
+/// A set of primitives with ids `0..len()` in scene order (triangles first, then spheres).
+///
+/// Contract of [`Geometry::intersect`]: the returned `t` is the shared kernel's `t` clamped into
+/// the slab interval of the primitive's own bounds ([`Aabb::ray_interval`]), and a kernel hit
+/// whose bounds the conservative slab test rejects is a miss. So `t` never lies before the entry
+/// of any box that contains the primitive's bounds, which makes "skip a box whose entry is
+/// greater than the best `t`" exact. The `t` does not depend on the `t_max` passed in (only its
+/// acceptance does): indices that shrink `t_max` get the bits brute force gets.
+pub trait Geometry: Clone + Send + Sync + 'static {
+    /// Number of primitives.
+    fn len(&self) -> usize;
+    /// `true` when there are no primitives.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Bounds of primitive `prim`.
+    fn bounds(&self, prim: u32) -> Aabb;
+    /// A representative point (centre of the bounds), for builders.
+    fn centroid(&self, prim: u32) -> Vec3A {
+        self.bounds(prim).center()
+    }
+    /// The shared kernel: `Some(t)` for a hit with `t` in `[ray.t_min, t_max]`.
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32>;
+    /// Conservative overlap of the primitive with a closed box (never a false "no").
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool;
+    /// Bounds of the part of the primitive inside `cell` (for kd-tree "perfect splits");
+    /// by default the overlap of the two boxes, which is conservative.
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        self.bounds(prim).intersection(*cell)
+    }
+    /// Unit geometric normal at the hit (final hit only).
+    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A;
+}
+
+/// Clamps a kernel's `t` into the slab interval of `bounds` and applies the `[t_min, t_max]`
+/// acceptance (see the [`Geometry`] contract).
+#[inline(always)]
+fn accept(t: Option<f32>, bounds: Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
+    let t = t?;
+    let (enter, exit) = bounds.ray_interval(ray, f32::NEG_INFINITY, f32::INFINITY)?;
+    let t = t.max(enter).min(exit);
+    (t >= ray.t_min && t <= t_max).then_some(t)
+}
+
+/// Scene primitives shared (cheap to clone) by every index built on one scene.
+#[derive(Debug, Clone, Default)]
+pub struct SceneGeometry {
+    pub triangles: Arc<[Triangle]>,
+    pub spheres: Arc<[Sphere]>,
+}
+
+impl SceneGeometry {
+    pub fn len(&self) -> usize {
+        self.triangles.len() + self.spheres.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Triangle-only geometry with kernel `K`.
+#[derive(Debug, Clone)]
+pub struct Triangles<K: TriangleKernel> {
+    pub tris: Arc<[Triangle]>,
+    kernel: PhantomData<K>,
+}
+
+impl<K: TriangleKernel> Triangles<K> {
+    pub fn new(tris: Arc<[Triangle]>) -> Self {
+        Triangles {
+            tris,
+            kernel: PhantomData,
+        }
+    }
+}
+
+impl<K: TriangleKernel> Geometry for Triangles<K> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.tris.len()
+    }
+    #[inline]
+    fn bounds(&self, prim: u32) -> Aabb {
+        self.tris[prim as usize].bounds()
+    }
+    #[inline]
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
+        let tri = &self.tris[prim as usize];
+        accept(K::intersect(tri, ray, ray.t_max), tri.bounds(), ray, t_max)
+    }
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
+        triangle_overlaps_box(&self.tris[prim as usize], cell)
+    }
+    fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
+        self.tris[prim as usize].normal()
+    }
+}
+
+/// Triangles (ids `0..n_tri`) and spheres (ids `n_tri..`), triangle kernel `K`, spheres by the
+/// stable algebraic kernel.
+#[derive(Debug, Clone)]
+pub struct Mixed<K: TriangleKernel> {
+    pub tris: Arc<[Triangle]>,
+    pub spheres: Arc<[Sphere]>,
+    kernel: PhantomData<K>,
+}
+
+impl<K: TriangleKernel> Mixed<K> {
+    pub fn new(tris: Arc<[Triangle]>, spheres: Arc<[Sphere]>) -> Self {
+        Mixed {
+            tris,
+            spheres,
+            kernel: PhantomData,
+        }
+    }
+}
+
+impl<K: TriangleKernel> Geometry for Mixed<K> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.tris.len() + self.spheres.len()
+    }
+    #[inline]
+    fn bounds(&self, prim: u32) -> Aabb {
+        let i = prim as usize;
+        match self.tris.get(i) {
+            Some(t) => t.bounds(),
+            None => self.spheres[i - self.tris.len()].bounds(),
+        }
+    }
+    #[inline]
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
+        let i = prim as usize;
+        match self.tris.get(i) {
+            Some(tri) => accept(K::intersect(tri, ray, ray.t_max), tri.bounds(), ray, t_max),
+            None => {
+                let s = &self.spheres[i - self.tris.len()];
+                accept(
+                    intersect_algebraic(s, ray, ray.t_max),
+                    s.bounds(),
+                    ray,
+                    t_max,
+                )
+            }
+        }
+    }
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
+        let i = prim as usize;
+        match self.tris.get(i) {
+            Some(t) => triangle_overlaps_box(t, cell),
+            None => sphere_overlaps_box(&self.spheres[i - self.tris.len()], cell),
+        }
+    }
+    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
+        let i = prim as usize;
+        match self.tris.get(i) {
+            Some(tri) => tri.normal(),
+            None => self.spheres[i - self.tris.len()].normal_at(ray.at(t)),
+        }
+    }
+}
+
+/// Something to run on a concrete geometry type (closures cannot be generic).
+pub trait GeometryVisitor {
+    type Output;
+    fn visit<G: Geometry>(self, geom: G) -> Self::Output;
+}
+
+/// Runs `v` on the geometry type that fits the scene: triangle-only scenes get [`Triangles`],
+/// others [`Mixed`]; the triangle kernel is fixed at compile time inside.
+pub fn with_geometry<V: GeometryVisitor>(
+    data: &SceneGeometry,
+    kernel: TriangleKernelKind,
+    v: V,
+) -> V::Output {
+    fn pick<K: TriangleKernel, V: GeometryVisitor>(data: &SceneGeometry, v: V) -> V::Output {
+        if data.spheres.is_empty() {
+            v.visit(Triangles::<K>::new(data.triangles.clone()))
+        } else {
+            v.visit(Mixed::<K>::new(
+                data.triangles.clone(),
+                data.spheres.clone(),
+            ))
+        }
+    }
+    match kernel {
+        TriangleKernelKind::PlaneEdges => pick::<PlaneEdges, V>(data, v),
+        TriangleKernelKind::Parametric => pick::<Parametric, V>(data, v),
+        TriangleKernelKind::MollerTrumbore => pick::<MollerTrumbore, V>(data, v),
+        TriangleKernelKind::Watertight => pick::<Watertight, V>(data, v),
+    }
+}

@@ -1,0 +1,194 @@
+//! Scenes: primitives stored per type, lights, an optional camera, and where they came from.
+
+mod error;
+pub mod generators;
+mod geometry;
+pub mod obj;
+
+pub use error::SceneError;
+pub use geometry::{Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, with_geometry};
+
+use crate::geometry::{Aabb, Sphere, Triangle};
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A point light (position in scene units, RGB intensity).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointLight {
+    pub position: Vec3,
+    #[serde(default = "white")]
+    pub intensity: Vec3,
+}
+
+fn white() -> Vec3 {
+    Vec3::ONE
+}
+
+/// A camera given by a scene: eye, look-at point, up, vertical field of view in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    pub eye: Vec3,
+    pub look_at: Vec3,
+    #[serde(default = "up_y")]
+    pub up: Vec3,
+    #[serde(default = "fov45")]
+    pub fov_deg: f32,
+}
+
+fn up_y() -> Vec3 {
+    Vec3::Y
+}
+
+fn fov45() -> f32 {
+    45.0
+}
+
+/// A scene. Primitive ids: triangles `0..triangles.len()` in source order, then spheres.
+#[derive(Debug, Clone, Default)]
+pub struct Scene {
+    pub name: String,
+    pub triangles: Vec<Triangle>,
+    pub spheres: Vec<Sphere>,
+    pub lights: Vec<PointLight>,
+    pub camera: Option<CameraSpec>,
+    /// Bounds the protocol's standard ray sets use: for OBJ files, every `v` line (also unused
+    /// vertices); otherwise the primitives' bounds.
+    pub reference_bounds: Option<Aabb>,
+}
+
+impl Scene {
+    /// A scene of triangles only.
+    pub fn from_triangles(name: impl Into<String>, triangles: Vec<Triangle>) -> Scene {
+        Scene {
+            name: name.into(),
+            triangles,
+            ..Scene::default()
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.triangles.len() + self.spheres.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Bounds of all primitives.
+    pub fn bounds(&self) -> Aabb {
+        let t = self.triangles.iter().map(|t| t.bounds());
+        let s = self.spheres.iter().map(|s| s.bounds());
+        t.chain(s).fold(Aabb::EMPTY, Aabb::union)
+    }
+
+    /// The bounds the standard ray sets are derived from (see [`Scene::reference_bounds`]).
+    pub fn ray_set_bounds(&self) -> Aabb {
+        self.reference_bounds.unwrap_or_else(|| self.bounds())
+    }
+
+    /// Number of zero-area triangles (kept, and reported).
+    pub fn degenerate_triangles(&self) -> usize {
+        self.triangles.iter().filter(|t| t.is_degenerate()).count()
+    }
+
+    /// Checks what every index relies on: at least one primitive, finite coordinates, spheres
+    /// with a finite positive radius, and fewer than `u32::MAX` primitives.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if self.is_empty() {
+            return Err(SceneError::Empty(self.name.clone()));
+        }
+        if self.len() >= u32::MAX as usize {
+            return Err(SceneError::Invalid(
+                self.name.clone(),
+                format!(
+                    "{} primitives; at most {} are supported",
+                    self.len(),
+                    u32::MAX - 1
+                ),
+            ));
+        }
+        if let Some(i) = self
+            .triangles
+            .iter()
+            .position(|t| !t.v.iter().all(|v| v.is_finite()))
+        {
+            return Err(SceneError::Invalid(
+                self.name.clone(),
+                format!("triangle {i} has a NaN or infinite coordinate"),
+            ));
+        }
+        if let Some(i) = self
+            .spheres
+            .iter()
+            .position(|s| !(s.center.is_finite() && s.radius.is_finite() && s.radius > 0.0))
+        {
+            return Err(SceneError::Invalid(
+                self.name.clone(),
+                format!(
+                    "sphere {i} needs a finite centre and a finite radius > 0 (got {:?})",
+                    self.spheres[i]
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The primitives in the shared form indices are built from.
+    pub fn geometry(&self) -> SceneGeometry {
+        SceneGeometry {
+            triangles: Arc::from(self.triangles.as_slice()),
+            spheres: Arc::from(self.spheres.as_slice()),
+        }
+    }
+
+    /// Loads a `.obj` file as a triangle scene named after the file.
+    pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
+        let mesh = obj::load_obj(path)?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| path.display().to_string());
+        let scene = Scene {
+            name,
+            triangles: mesh.triangles,
+            reference_bounds: Some(mesh.vertex_bounds),
+            ..Scene::default()
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// The scene's lights, or one default light above the front-right of the bounds when it has
+    /// none.
+    pub fn lights_or_default(&self) -> Vec<PointLight> {
+        if !self.lights.is_empty() {
+            return self.lights.clone();
+        }
+        let b = self.bounds();
+        let c = Vec3::from(b.center());
+        let d = Vec3::from(b.extent()).length().max(f32::MIN_POSITIVE);
+        vec![PointLight {
+            position: c + Vec3::new(0.5, 1.0, 0.8) * d,
+            intensity: Vec3::ONE,
+        }]
+    }
+}
+
+/// Resolves a `--scene` argument: a path to an `.obj` file, or a built-in scene name.
+pub fn load_scene(arg: &str) -> Result<Scene, SceneError> {
+    let path = Path::new(arg);
+    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
+    match ext.as_deref() {
+        Some("obj") => Scene::load_obj(path),
+        _ => generators::builtin(arg).unwrap_or_else(|| {
+            Err(SceneError::UnknownScene(
+                arg.to_owned(),
+                generators::BUILTIN_NAMES.join(", "),
+            ))
+        }),
+    }
+}

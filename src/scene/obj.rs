@@ -1,0 +1,144 @@
+//! Wavefront OBJ loading (positions only) with tobj, plus a scan of every `v` line for the
+//! protocol's bounding box (which includes vertices no face uses) and for NaN/inf coordinates.
+
+use super::SceneError;
+use crate::geometry::{Aabb, Triangle};
+use glam::Vec3A;
+use std::path::Path;
+
+/// The triangles of an OBJ file in file order (faces fan-triangulated `(v0, vi, vi+1)`, models
+/// concatenated in order) and the bounds of all its `v` lines.
+#[derive(Debug, Clone)]
+pub struct ObjMesh {
+    pub triangles: Vec<Triangle>,
+    pub vertex_bounds: Aabb,
+}
+
+/// Loads an OBJ file. Errors: missing or unreadable file, malformed content, NaN or infinite
+/// coordinates (with the line), no vertices, or no faces.
+pub fn load_obj(path: &Path) -> Result<ObjMesh, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    let vertex_bounds = scan_vertices(path, &text)?;
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut text.as_bytes(), &opts, |_| Ok(Default::default())).map_err(
+            |e| SceneError::Obj {
+                path: path.to_owned(),
+                message: e.to_string(),
+            },
+        )?;
+    let mut triangles = Vec::new();
+    for m in &models {
+        let p = &m.mesh.positions;
+        let vertex = |i: u32| -> Result<Vec3A, SceneError> {
+            let i = i as usize * 3;
+            p.get(i..i + 3)
+                .map(|c| Vec3A::new(c[0], c[1], c[2]))
+                .ok_or_else(|| SceneError::Obj {
+                    path: path.to_owned(),
+                    message: format!("face index {} out of range in model '{}'", i / 3, m.name),
+                })
+        };
+        for f in m.mesh.indices.chunks_exact(3) {
+            triangles.push(Triangle::new(vertex(f[0])?, vertex(f[1])?, vertex(f[2])?));
+        }
+    }
+    if vertex_bounds.is_empty() || triangles.is_empty() {
+        return Err(SceneError::Empty(format!(
+            "{} (found {} triangles; an OBJ scene needs 'v' and 'f' lines)",
+            path.display(),
+            triangles.len()
+        )));
+    }
+    Ok(ObjMesh {
+        triangles,
+        vertex_bounds,
+    })
+}
+
+/// Bounds of every `v x y z` line; rejects non-finite or unparsable coordinates with the line.
+fn scan_vertices(path: &Path, text: &str) -> Result<Aabb, SceneError> {
+    let mut b = Aabb::EMPTY;
+    for (n, line) in text.lines().enumerate() {
+        let mut it = line.split_whitespace();
+        if it.next() != Some("v") {
+            continue;
+        }
+        let mut c = [0.0f32; 3];
+        for ci in c.iter_mut() {
+            let tok = it.next().unwrap_or("");
+            *ci = tok.parse::<f32>().map_err(|_| SceneError::Obj {
+                path: path.to_owned(),
+                message: format!("line {}: bad vertex coordinate '{}'", n + 1, tok),
+            })?;
+            if !ci.is_finite() {
+                return Err(SceneError::NonFiniteVertex {
+                    path: path.to_owned(),
+                    line: n + 1,
+                    text: line.trim().to_owned(),
+                });
+            }
+        }
+        b = b.grown(Vec3A::from(c));
+    }
+    Ok(b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    fn write(text: &str) -> tempfile::NamedTempFile {
+        let mut f = tempfile::Builder::new().suffix(".obj").tempfile().unwrap();
+        f.write_all(text.as_bytes()).unwrap();
+        f
+    }
+
+    #[test]
+    fn loads_quad_fan_triangulated_and_unused_vertex_bounds() {
+        let f = write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3 4\n");
+        let m = load_obj(f.path()).unwrap();
+        assert_eq!(m.triangles.len(), 2);
+        assert_eq!(m.triangles[1].v[1], Vec3A::new(1.0, 1.0, 0.0));
+        assert_eq!(m.vertex_bounds.max, Vec3A::splat(5.0));
+    }
+
+    #[test]
+    fn errors_are_typed() {
+        let missing = load_obj(Path::new("/nonexistent/x.obj"));
+        assert!(matches!(missing, Err(SceneError::Io { .. })));
+        let garbage = write("this is not an obj file\n\u{1}\u{2}\n");
+        assert!(matches!(
+            load_obj(garbage.path()),
+            Err(SceneError::Empty(_))
+        ));
+        let bad_coord = write("v 0 0 zero\nf 1 1 1\n");
+        assert!(matches!(
+            load_obj(bad_coord.path()),
+            Err(SceneError::Obj { .. })
+        ));
+        let nan = write("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+        match load_obj(nan.path()) {
+            Err(SceneError::NonFiniteVertex { line, .. }) => assert_eq!(line, 2),
+            other => panic!("expected NonFiniteVertex, got {other:?}"),
+        }
+        let empty = write("");
+        assert!(matches!(load_obj(empty.path()), Err(SceneError::Empty(_))));
+        let no_faces = write("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        assert!(matches!(
+            load_obj(no_faces.path()),
+            Err(SceneError::Empty(_))
+        ));
+        let bad_index = write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+        assert!(load_obj(bad_index.path()).is_err());
+    }
+}
