@@ -9,6 +9,7 @@
 pub mod camera;
 pub mod cli;
 pub mod geometry;
+pub mod harness;
 pub mod index;
 pub mod rays;
 pub mod scene;

@@ -1,0 +1,3 @@
+//! The measuring and checking machinery shared by the CLI, benches and tests.
+
+pub mod verify;

@@ -1,0 +1,122 @@
+//! Shared test scenes and ray families for the cross-index agreement tests: the same test body
+//! runs against every index (`assert_agrees("grid", ...)`).
+#![allow(dead_code)]
+
+use accelbench::geometry::{Ray, TriangleKernelKind};
+use accelbench::harness::verify::verify_against_brute;
+use accelbench::index::IndexSpec;
+use accelbench::rays::{incoherent_rays, primary_rays};
+use accelbench::scene::{Scene, generators};
+use glam::Vec3;
+use std::path::Path;
+
+/// Small versions of the agreement scenes every index is tested on.
+pub fn agreement_scenes() -> Vec<Scene> {
+    let mut v: Vec<Scene> = [
+        "icosphere",
+        "spheres",
+        "mixed",
+        "soup",
+        "stadium",
+        "flat",
+        "room",
+        "slivers",
+        "terrain",
+    ]
+    .iter()
+    .map(|n| generators::generate(n, 3000, 7).unwrap())
+    .collect();
+    // Coincident duplicates (both windings) and zero-area triangles.
+    let mut dup = generators::generate("icosphere", 1000, 1).unwrap();
+    let extra: Vec<_> = dup
+        .triangles
+        .iter()
+        .take(200)
+        .map(|t| accelbench::geometry::Triangle::new(t.v[0], t.v[2], t.v[1]))
+        .collect();
+    dup.triangles.extend(extra);
+    let t0 = dup.triangles[0];
+    dup.triangles.push(accelbench::geometry::Triangle::new(
+        t0.v[0], t0.v[1], t0.v[1],
+    ));
+    dup.name = "duplicates".into();
+    v.push(dup);
+    v
+}
+
+/// The bunny from ../shared/meshes when present.
+pub fn bunny() -> Option<Scene> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/stanford_bunny.obj");
+    p.exists().then(|| Scene::load_obj(&p).unwrap())
+}
+
+/// Protocol primary and incoherent rays, plus rays aimed exactly at vertices and edge midpoints
+/// (from outside and from the centre), and axis-parallel rays with +0.0 and -0.0 components.
+pub fn agreement_rays(scene: &Scene, n: usize) -> Vec<Ray> {
+    let b = scene.ray_set_bounds();
+    let side = ((n as f64).sqrt() as u32).max(2);
+    let mut rays = primary_rays(&b, side, side).unwrap();
+    rays.extend(incoherent_rays(&b, n, 42));
+    let c = Vec3::from(b.center());
+    let eye = c + Vec3::from(b.extent()) * Vec3::new(0.9, 0.7, 1.3) + Vec3::splat(0.01);
+    for t in scene
+        .triangles
+        .iter()
+        .step_by((scene.triangles.len() / (n / 4).max(1)).max(1))
+    {
+        for target in [t.v[0], (t.v[0] + t.v[1]) * 0.5] {
+            let target = Vec3::from(target);
+            for o in [eye, c] {
+                if let Ok(r) = Ray::infinite(o, target - o) {
+                    rays.push(r);
+                }
+            }
+        }
+    }
+    let e = Vec3::from(b.extent());
+    for i in 0..16 {
+        let f = (i as f32 + 0.5) / 16.0;
+        let o = Vec3::from(b.min) + e * Vec3::new(f, 1.0 - f, f * f) - e;
+        for d in [
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, -0.0, -0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(-0.0, 0.0, 1.0),
+        ] {
+            let o2 = o + e * (Vec3::ONE - d.abs()) * 1.0;
+            rays.push(Ray::infinite(o2 - d * e, d).unwrap());
+        }
+    }
+    rays
+}
+
+/// Asserts that index `spec` returns brute force's hits bit for bit on every agreement scene.
+pub fn assert_agrees_everywhere(spec: &str, rays_per_scene: usize) {
+    for scene in agreement_scenes() {
+        assert_agrees(spec, &scene, &agreement_rays(&scene, rays_per_scene));
+    }
+}
+
+/// Asserts agreement with brute force on one scene and ray set, printing the first mismatches.
+pub fn assert_agrees(spec: &str, scene: &Scene, rays: &[Ray]) {
+    let spec: IndexSpec = spec.parse().unwrap();
+    let m = verify_against_brute(
+        &spec,
+        &scene.geometry(),
+        TriangleKernelKind::Watertight,
+        rays,
+    )
+    .unwrap();
+    assert!(
+        m.is_empty(),
+        "{spec} on {}: {} of {} rays mismatch, first: {}",
+        scene.name,
+        m.len(),
+        rays.len(),
+        m.iter()
+            .take(3)
+            .map(|m| m.to_string())
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}
