@@ -1,3 +1,4 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
+pub mod timing;
 pub mod verify;
