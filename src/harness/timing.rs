@@ -29,15 +29,20 @@ impl Timing {
 
 /// Runs `f` `repeats` times (at least once) and returns the median and spread.
 pub fn time_repeated(repeats: usize, mut f: impl FnMut()) -> Timing {
-    let repeats = repeats.max(1);
-    let mut samples: Vec<Duration> = (0..repeats)
+    let samples: Vec<Duration> = (0..repeats.max(1))
         .map(|_| {
             let start = Instant::now();
             f();
             start.elapsed()
         })
         .collect();
+    summarize(samples)
+}
+
+/// Median and spread of non-empty samples.
+fn summarize(mut samples: Vec<Duration>) -> Timing {
     samples.sort();
+    let repeats = samples.len();
     Timing {
         median: samples[repeats / 2],
         spread: samples[repeats - 1] - samples[0],
@@ -107,13 +112,11 @@ mod tests {
 
     #[test]
     fn median_and_spread() {
-        let mut n = 0u64;
-        let t = time_repeated(5, || {
-            n += 1;
-            std::thread::sleep(Duration::from_millis(n));
-        });
-        assert_eq!(t.repeats, 5);
-        assert!(t.median >= Duration::from_millis(3));
-        assert!(t.spread >= Duration::from_millis(4));
+        let ms = Duration::from_millis;
+        let t = summarize(vec![ms(5), ms(1), ms(9), ms(3), ms(4)]);
+        assert_eq!((t.median, t.spread, t.repeats), (ms(4), ms(8), 5));
+        let mut calls = 0;
+        assert_eq!(time_repeated(0, || calls += 1).repeats, 1);
+        assert_eq!(calls, 1);
     }
 }
