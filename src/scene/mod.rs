@@ -1,12 +1,17 @@
 //! Scenes: primitives stored per type, lights, an optional camera, and where they came from.
 
 mod error;
+pub mod file;
 pub mod generators;
 mod geometry;
+mod meshes_dir;
 pub mod obj;
+pub mod obj_writer;
+pub mod transform;
 
 pub use error::SceneError;
 pub use geometry::{Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, with_geometry};
+pub use meshes_dir::meshes_in;
 
 use crate::geometry::{Aabb, Sphere, Triangle};
 use glam::Vec3;
@@ -178,12 +183,15 @@ impl Scene {
     }
 }
 
-/// Resolves a `--scene` argument: a path to an `.obj` file, or a built-in scene name.
+/// Resolves a `--scene` argument: a path to an `.obj` or `.toml` file (extension in any case),
+/// or a built-in scene name with optional parameters (`soup`, `stadium:n=1000000`,
+/// `soup:n=100000,seed=3`; see [`generators::GeneratorSpec`]).
 pub fn load_scene(arg: &str) -> Result<Scene, SceneError> {
     let path = Path::new(arg);
     let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
     match ext.as_deref() {
         Some("obj") => Scene::load_obj(path),
+        Some("toml") => file::load_scene_file(path),
         _ => generators::builtin(arg).unwrap_or_else(|| {
             Err(SceneError::UnknownScene(
                 arg.to_owned(),

@@ -71,11 +71,18 @@ pub fn room(n: usize) -> Vec<Triangle> {
     tris
 }
 
-/// Teapot in a stadium: a dense icosphere of radius `0.001` (about 95% of `n` triangles) at the
-/// centre of a stadium 1000 times larger (a ground plane and a ring of 64 large wall panels).
+/// Wall panels of the stadium ring.
+const STADIUM_PANELS: usize = 64;
+
+/// Triangles of the stadium itself: a ground quad and the wall panels, two triangles each.
+const STADIUM_TRIANGLES: usize = 2 + 2 * STADIUM_PANELS;
+
+/// Teapot in a stadium: a dense icosphere of radius `0.001` (the icosphere closest to the `n`
+/// triangles left after the stadium's [`STADIUM_TRIANGLES`]) at the centre of a stadium 1000
+/// times larger (a ground plane and a ring of [`STADIUM_PANELS`] large wall panels).
 /// Uniform grids fail here: cells sized for the stadium put the whole object in one cell.
 pub fn teapot_in_stadium(n: usize) -> Vec<Triangle> {
-    let level = level_for((n as f64 * 0.95) as usize);
+    let level = level_for(n.saturating_sub(STADIUM_TRIANGLES));
     let mut tris: Vec<Triangle> = icosphere(level)
         .into_iter()
         .map(|t| Triangle::new(t.v[0] * 0.001, t.v[1] * 0.001, t.v[2] * 0.001))
@@ -92,7 +99,7 @@ pub fn teapot_in_stadium(n: usize) -> Vec<Triangle> {
         Vec3A::new(-r, g, r),
         Vec3A::new(r, g, r),
     ));
-    let panels = 64;
+    let panels = STADIUM_PANELS;
     for i in 0..panels {
         let a0 = i as f32 / panels as f32 * std::f32::consts::TAU;
         let a1 = (i + 1) as f32 / panels as f32 * std::f32::consts::TAU;
@@ -133,6 +140,27 @@ mod tests {
         }
         assert_eq!(level_for(20), 0);
         assert_eq!(level_for(5120), 4);
+    }
+
+    /// The size arithmetic of the structured generators, without generating: within a factor
+    /// of 2 of `n` from 1k to 16M.
+    #[test]
+    fn size_arithmetic_tracks_n_up_to_16m() {
+        let mut n = 1000usize;
+        while n <= 16_000_000 {
+            let within = |len: usize| len >= n / 2 && len <= n * 2;
+            let ico = 20usize << (2 * level_for(n));
+            assert!(within(ico), "icosphere level {} for {n}", level_for(n));
+            let k = side_for(n);
+            assert!(within(2 * k * k), "height field side {k} for {n}");
+            let teapot = 20usize << (2 * level_for(n - STADIUM_TRIANGLES));
+            let stadium = teapot + STADIUM_TRIANGLES;
+            if n < 100_000 {
+                assert_eq!(teapot_in_stadium(n).len(), stadium);
+            }
+            assert!(within(stadium), "stadium {stadium} for {n}");
+            n = n * 3 / 2 + 1;
+        }
     }
 
     #[test]

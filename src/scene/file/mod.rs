@@ -1,0 +1,166 @@
+//! Scene files in TOML: OBJ meshes and generators placed by transforms, spheres, a camera and
+//! point lights (format in [`schema`]).
+//!
+//! Primitive ids: all triangles, then all spheres. Within each kind, objects contribute in the
+//! order their tables appear in the file (`[[mesh]]` and `[[generator]]` tables interleaved as
+//! written; a generator's spheres, e.g. from `spheres` or `mixed`, sit among the `[[sphere]]`
+//! tables at the generator's place), and each object's primitives keep their own order.
+
+pub mod schema;
+
+use super::generators::{DEFAULT_SEED, DEFAULT_SIZE, GeneratorSpec};
+use super::transform::{Transform, TransformError};
+use super::{Scene, SceneError, obj};
+use crate::camera::Camera;
+use glam::Vec3A;
+use schema::{GeneratorEntry, MeshEntry, RotateSpec, ScaleSpec, SceneFile, SphereEntry};
+use std::path::Path;
+
+/// One table of the file that contributes primitives.
+enum Object<'a> {
+    Mesh(&'a MeshEntry),
+    Generator(&'a GeneratorEntry),
+    Sphere(&'a SphereEntry),
+}
+
+/// Loads a `.toml` scene file. Every error names the file and, for an object, its line.
+pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    let bad = |message: String| SceneError::SceneFile {
+        path: path.to_owned(),
+        message,
+    };
+    let file: SceneFile = toml::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+
+    let mut objects: Vec<(usize, Object)> = Vec::new();
+    objects.extend(
+        file.meshes
+            .iter()
+            .map(|m| (m.span().start, Object::Mesh(m.get_ref()))),
+    );
+    objects.extend(
+        file.generators
+            .iter()
+            .map(|g| (g.span().start, Object::Generator(g.get_ref()))),
+    );
+    objects.extend(
+        file.spheres
+            .iter()
+            .map(|s| (s.span().start, Object::Sphere(s.get_ref()))),
+    );
+    objects.sort_by_key(|(start, _)| *start);
+    if objects.is_empty() {
+        return Err(bad(
+            "the scene is empty: add at least one [[mesh]], [[generator]] or [[sphere]]".into(),
+        ));
+    }
+
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let name = file.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| path.display().to_string())
+    });
+    let mut scene = Scene {
+        name,
+        ..Scene::default()
+    };
+    for (start, object) in &objects {
+        let at = |what: &str, e: &dyn std::fmt::Display| {
+            bad(format!("line {}, {what}: {e}", line(*start)))
+        };
+        match object {
+            Object::Mesh(m) => {
+                let what = format!("[[mesh]] path = \"{}\"", m.path);
+                let t = transform(m.scale, m.rotate, m.translate).map_err(|e| at(&what, &e))?;
+                let mesh = obj::load_obj(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
+                scene
+                    .triangles
+                    .extend(mesh.triangles.iter().map(|tri| t.triangle(tri)));
+            }
+            Object::Generator(g) => {
+                let what = format!("[[generator]] name = \"{}\"", g.name);
+                let t = transform(g.scale, g.rotate, g.translate).map_err(|e| at(&what, &e))?;
+                let spec = GeneratorSpec::new(
+                    &g.name,
+                    g.n.unwrap_or(DEFAULT_SIZE as i64),
+                    g.seed.unwrap_or(DEFAULT_SEED),
+                )
+                .map_err(|e| at(&what, &e))?;
+                let generated = spec.generate().map_err(|e| at(&what, &e))?;
+                scene
+                    .triangles
+                    .extend(generated.triangles.iter().map(|tri| t.triangle(tri)));
+                for s in &generated.spheres {
+                    scene.spheres.push(t.sphere(s).map_err(|e| at(&what, &e))?);
+                }
+            }
+            Object::Sphere(s) => {
+                let ok = s.center.iter().all(|c| c.is_finite())
+                    && s.radius.is_finite()
+                    && s.radius > 0.0;
+                if !ok {
+                    return Err(at(
+                        "[[sphere]]",
+                        &format!(
+                            "center {:?} and radius {} are invalid: give a finite center and a finite radius > 0",
+                            s.center, s.radius
+                        ),
+                    ));
+                }
+                scene.spheres.push(crate::geometry::Sphere::new(
+                    Vec3A::from(s.center),
+                    s.radius,
+                ));
+            }
+        }
+    }
+
+    if let Some(c) = &file.camera {
+        Camera::look_at(
+            c.eye.as_dvec3(),
+            c.look_at.as_dvec3(),
+            c.up.as_dvec3(),
+            c.fov_deg as f64,
+            1,
+            1,
+        )
+        .map_err(|e| bad(format!("[camera]: {e}")))?;
+    }
+    for (i, l) in file.lights.iter().enumerate() {
+        let ok =
+            l.position.is_finite() && l.intensity.is_finite() && l.intensity.min_element() >= 0.0;
+        if !ok {
+            return Err(bad(format!(
+                "[[light]] {}: position {:?} and intensity {:?} are invalid: give a finite position and a finite intensity >= 0",
+                i + 1,
+                l.position.to_array(),
+                l.intensity.to_array()
+            )));
+        }
+    }
+    scene.camera = file.camera;
+    scene.lights = file.lights;
+    scene.validate().map_err(|e| bad(e.to_string()))?;
+    Ok(scene)
+}
+
+/// The transform of an object's `scale`, `rotate` and `translate` keys.
+fn transform(
+    scale: Option<ScaleSpec>,
+    rotate: Option<RotateSpec>,
+    translate: Option<[f64; 3]>,
+) -> Result<Transform, TransformError> {
+    Transform::new(
+        scale.map_or([1.0; 3], ScaleSpec::factors),
+        rotate.map(|r| (r.axis, r.degrees)),
+        translate.unwrap_or([0.0; 3]),
+    )
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,109 @@
+//! The TOML scene format as serde types; unknown fields are rejected everywhere.
+//!
+//! ```toml
+//! name = "example"                       # optional; default: the file's stem
+//!
+//! [camera]                               # optional
+//! eye = [0.5, 1.5, 3.0]
+//! look_at = [0.5, 0.2, 0.5]
+//! up = [0, 1, 0]                         # default +Y
+//! fov_deg = 45                           # default 45
+//!
+//! [[light]]                              # any number
+//! position = [2, 4, 2]
+//! intensity = [1, 1, 1]                  # default white
+//!
+//! [[mesh]]                               # an OBJ file, relative to this file's directory
+//! path = "../meshes/bunny.obj"
+//! scale = 2                              # or [sx, sy, sz]; default 1
+//! rotate = { axis = [0, 1, 0], degrees = 30 }
+//! translate = [0, 0.1, 0]
+//!
+//! [[generator]]                          # a built-in generator
+//! name = "terrain"
+//! n = 20000                              # default 20000
+//! seed = 3                               # default 1
+//! scale = [4, 1, 4]                      # same transform keys as [[mesh]]
+//!
+//! [[sphere]]
+//! center = [0.5, 0.5, 0.5]
+//! radius = 0.1
+//! ```
+
+use crate::scene::{CameraSpec, PointLight};
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub name: Option<String>,
+    pub camera: Option<CameraSpec>,
+    #[serde(default, rename = "light")]
+    pub lights: Vec<PointLight>,
+    /// Spanned so objects of different kinds can be put back into file order.
+    #[serde(default, rename = "mesh")]
+    pub meshes: Vec<Spanned<MeshEntry>>,
+    #[serde(default, rename = "generator")]
+    pub generators: Vec<Spanned<GeneratorEntry>>,
+    #[serde(default, rename = "sphere")]
+    pub spheres: Vec<Spanned<SphereEntry>>,
+}
+
+/// `[[mesh]]`: an OBJ file placed by a transform.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshEntry {
+    /// Relative to the directory of the scene file (or absolute).
+    pub path: String,
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+/// `[[generator]]`: a built-in generator with its size and seed, placed by a transform.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeneratorEntry {
+    pub name: String,
+    pub n: Option<i64>,
+    pub seed: Option<u64>,
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+/// `[[sphere]]`: one sphere.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereEntry {
+    pub center: [f32; 3],
+    pub radius: f32,
+}
+
+/// `scale = s` (uniform) or `scale = [sx, sy, sz]`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged, expecting = "a number or an array [sx, sy, sz]")]
+pub enum ScaleSpec {
+    Uniform(f64),
+    PerAxis([f64; 3]),
+}
+
+impl ScaleSpec {
+    pub fn factors(self) -> [f64; 3] {
+        match self {
+            ScaleSpec::Uniform(s) => [s; 3],
+            ScaleSpec::PerAxis(s) => s,
+        }
+    }
+}
+
+/// `rotate = { axis = [x, y, z], degrees = a }`: a right-handed rotation about `axis` through
+/// the origin.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RotateSpec {
+    pub axis: [f64; 3],
+    pub degrees: f64,
+}
