@@ -5,7 +5,7 @@ use anyhow::Context;
 
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// An .obj path or a built-in scene name.
+    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
 }
@@ -24,5 +24,22 @@ pub fn run(a: InfoArgs) -> anyhow::Result<()> {
     println!("bounds min:  {:?}", b.min.to_array());
     println!("bounds max:  {:?}", b.max.to_array());
     println!("lights:      {}", scene.lights.len());
+    for l in &scene.lights {
+        println!(
+            "  position {:?} intensity {:?}",
+            l.position.to_array(),
+            l.intensity.to_array()
+        );
+    }
+    match &scene.camera {
+        Some(c) => println!(
+            "camera:      eye {:?} look_at {:?} up {:?} fov {} deg",
+            c.eye.to_array(),
+            c.look_at.to_array(),
+            c.up.to_array(),
+            c.fov_deg
+        ),
+        None => println!("camera:      none (the protocol camera is used)"),
+    }
     Ok(())
 }

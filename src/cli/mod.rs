@@ -1,5 +1,6 @@
 //! The `accelbench` command line: one file per subcommand, all logic in the library.
 
+mod gen_obj;
 mod info;
 mod rays;
 mod trace;
@@ -26,6 +27,8 @@ enum Command {
     Rays(rays::RaysArgs),
     /// Trace a .rays file with one index and write the .hits file.
     Trace(trace::TraceArgs),
+    /// Write a generator's triangles as an .obj file (by default into meshes/).
+    Gen(gen_obj::GenArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -35,6 +38,7 @@ pub fn main() -> ExitCode {
         Command::Info(a) => info::run(a),
         Command::Rays(a) => rays::run(a),
         Command::Trace(a) => trace::run(a),
+        Command::Gen(a) => gen_obj::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

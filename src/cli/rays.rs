@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct RaysArgs {
-    /// An .obj path or a built-in scene name.
+    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
     /// Which standard set (see ../shared/PROTOCOL.md).

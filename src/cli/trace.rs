@@ -12,7 +12,7 @@ use std::time::Instant;
 
 #[derive(Debug, clap::Args)]
 pub struct TraceArgs {
-    /// An .obj path or a built-in scene name.
+    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
     /// Index name with optional parameters, e.g. `brute` or `bvh:leaf_size=4`.
@@ -21,6 +21,9 @@ pub struct TraceArgs {
     /// Input .rays file.
     #[arg(long)]
     rays: PathBuf,
+    /// Trace only the first N rays of the file (the .hits file then has N records).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    limit: Option<u64>,
     /// Output .hits file (optional).
     #[arg(long)]
     hits: Option<PathBuf>,
@@ -41,7 +44,10 @@ fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
 
 pub fn run(a: TraceArgs) -> anyhow::Result<()> {
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
-    let rays = read_rays(&a.rays)?;
+    let mut rays = read_rays(&a.rays)?;
+    if let Some(limit) = a.limit {
+        rays.truncate(usize::try_from(limit).unwrap_or(usize::MAX));
+    }
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
     let geom = scene.geometry();
     let index = with_threads(threads, || build_index(&a.index, &geom, a.kernel))??;

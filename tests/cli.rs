@@ -1,0 +1,236 @@
+//! The command line on bad input (each case exits non-zero with a message that says what to
+//! fix) and on the happy path (`rays`, then `trace` writes one hit record per ray; `gen` writes
+//! an OBJ that loads back).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the accelbench binary runs")
+}
+
+/// Runs `args`, expects a non-zero exit, and every `expected` piece in stderr.
+fn fails_with(args: &[&str], expected: &[&str]) {
+    let out = run(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} should fail; stderr: {err}");
+    for e in expected {
+        assert!(
+            err.contains(e),
+            "{args:?}: expected '{e}' in stderr:\n{err}"
+        );
+    }
+    assert!(!err.contains("panicked"), "{args:?} panicked:\n{err}");
+}
+
+fn succeeds(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?} failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn file(dir: &Path, name: &str, bytes: &[u8]) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+fn ray_record(origin: [f32; 3], dir: [f32; 3]) -> Vec<u8> {
+    let r = [
+        origin[0],
+        origin[1],
+        origin[2],
+        0.0,
+        dir[0],
+        dir[1],
+        dir[2],
+        f32::INFINITY,
+    ];
+    r.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+fn path(p: &Path) -> String {
+    p.to_string_lossy().into_owned()
+}
+
+#[test]
+fn bad_scenes_are_explained() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fails_with(
+        &["info", "--scene", "/nonexistent/missing.obj"],
+        &["missing.obj", "cannot read"],
+    );
+    let garbage = file(d, "garbage.obj", b"this is not an obj file\n\x01\x02\n");
+    fails_with(
+        &["info", "--scene", &garbage],
+        &["garbage.obj", "'v' and 'f' lines"],
+    );
+    let nan = file(d, "nan.obj", b"v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+    fails_with(&["info", "--scene", &nan], &["nan.obj", "line 2", "NaN"]);
+    let empty = file(d, "empty.obj", b"");
+    fails_with(
+        &["info", "--scene", &empty],
+        &["empty.obj", "no primitives"],
+    );
+    fails_with(
+        &["info", "--scene", "teapot"],
+        &["unknown scene 'teapot'", "icosphere", ".toml"],
+    );
+    fails_with(&["info", "--scene", "soup:n=0"], &["n = 0", "from 1 to"]);
+    fails_with(
+        &["info", "--scene", "soup:size=3"],
+        &["unknown parameter 'size'"],
+    );
+    let toml = file(
+        d,
+        "bad.toml",
+        b"[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\ncolour = 2\n",
+    );
+    fails_with(
+        &["info", "--scene", &toml],
+        &["bad.toml", "unknown field `colour`"],
+    );
+    let radius = file(
+        d,
+        "radius.toml",
+        b"[[sphere]]\ncenter = [0, 0, 0]\nradius = -1\n",
+    );
+    fails_with(
+        &["info", "--scene", &radius],
+        &["radius.toml", "radius > 0"],
+    );
+}
+
+#[test]
+fn bad_trace_and_rays_arguments_are_explained() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let good = file(
+        d,
+        "good.rays",
+        &ray_record([0.5, 0.5, -1.0], [0.0, 0.0, 1.0]),
+    );
+    let trace = |extra: &[&str], expected: &[&str]| {
+        let mut args = vec!["trace", "--scene", "soup:n=1000"];
+        args.extend_from_slice(extra);
+        fails_with(&args, expected);
+    };
+    trace(
+        &["--index", "nope", "--rays", &good],
+        &["unknown index 'nope'", "brute"],
+    );
+    trace(
+        &["--index", "brute:leaf=3", "--rays", &good],
+        &["invalid parameters for index 'brute'", "leaf"],
+    );
+    trace(
+        &["--rays", &good, "--threads", "0"],
+        &["not a thread count"],
+    );
+    trace(&["--rays", &good, "--limit", "0"], &["--limit"]);
+    let short = file(d, "short.rays", &[0u8; 33]);
+    trace(&["--rays", &short], &["short.rays", "not a multiple of 32"]);
+    let mut nan = ray_record([0.0; 3], [0.0, 0.0, 1.0]);
+    nan.extend(ray_record([f32::NAN, 0.0, 0.0], [0.0, 0.0, 1.0]));
+    let nan = file(d, "nan.rays", &nan);
+    trace(&["--rays", &nan], &["nan.rays", "record 1", "origin"]);
+    let zero = file(d, "zero.rays", &ray_record([0.0; 3], [0.0; 3]));
+    trace(
+        &["--rays", &zero],
+        &["zero.rays", "record 0", "direction is zero"],
+    );
+    let out = path(&d.join("x.rays"));
+    fails_with(
+        &[
+            "rays", "--scene", "soup", "--set", "primary", "--size", "0", "--out", &out,
+        ],
+        &["--size", "0"],
+    );
+    fails_with(
+        &[
+            "gen",
+            "--generator",
+            "spheres",
+            "--out",
+            &path(&d.join("s.obj")),
+        ],
+        &["spheres", "choose a triangle generator"],
+    );
+}
+
+#[test]
+fn rays_then_trace_writes_one_hit_per_ray() {
+    let dir = tempfile::tempdir().unwrap();
+    let rays = path(&dir.path().join("r.rays"));
+    let hits = path(&dir.path().join("h.hits"));
+    succeeds(&[
+        "rays",
+        "--scene",
+        "icosphere:n=2000",
+        "--set",
+        "incoherent",
+        "--count",
+        "300",
+        "--out",
+        &rays,
+    ]);
+    assert_eq!(std::fs::metadata(&rays).unwrap().len(), 300 * 32);
+    let report = succeeds(&[
+        "trace",
+        "--scene",
+        "icosphere:n=2000",
+        "--index",
+        "brute",
+        "--rays",
+        &rays,
+        "--hits",
+        &hits,
+        "--threads",
+        "2",
+    ]);
+    assert!(report.contains("rays:             300"), "{report}");
+    assert_eq!(std::fs::metadata(&hits).unwrap().len(), 300 * 8);
+    succeeds(&[
+        "trace",
+        "--scene",
+        "icosphere:n=2000",
+        "--rays",
+        &rays,
+        "--hits",
+        &hits,
+        "--limit",
+        "17",
+    ]);
+    assert_eq!(std::fs::metadata(&hits).unwrap().len(), 17 * 8);
+}
+
+#[test]
+fn gen_writes_an_obj_that_loads_back_and_example_scenes_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj: PathBuf = dir.path().join("meshes/terrain.obj");
+    succeeds(&[
+        "gen",
+        "--generator",
+        "terrain",
+        "--n",
+        "2000",
+        "--out",
+        &path(&obj),
+    ]);
+    let info = succeeds(&["info", "--scene", &path(&obj)]);
+    assert!(info.contains("triangles:   2048"), "{info}");
+    let info = succeeds(&["info", "--scene", "scenes/generated_mix.toml"]);
+    assert!(
+        info.contains("lights:      2") && info.contains("fov 50 deg"),
+        "{info}"
+    );
+}
