@@ -83,6 +83,7 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
     println!("rays:             {}", rays.len());
     println!("hits:             {}", hits.iter().flatten().count());
     println!("trace:            {:.3} ms", secs * 1e3);
+    println!("rays/s:           {:.0}", rays.len() as f64 / secs);
     println!("Mrays/s:          {:.3}", rays.len() as f64 / secs / 1e6);
     println!(
         "Mtests/s:         {:.3}",
