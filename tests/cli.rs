@@ -234,3 +234,15 @@ fn gen_writes_an_obj_that_loads_back_and_example_scenes_load() {
         "{info}"
     );
 }
+
+#[test]
+fn bunny_example_scene_loads_when_shared_meshes_are_present() {
+    let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/stanford_bunny.obj");
+    if !bunny.exists() {
+        eprintln!("skipped: {} is absent", bunny.display());
+        return;
+    }
+    let info = succeeds(&["info", "--scene", "scenes/bunny_on_terrain.toml"]);
+    // 69,451 bunny triangles + a 50,000-triangle terrain (2 * 158^2 = 49,928).
+    assert!(info.contains("triangles:   119379"), "{info}");
+}

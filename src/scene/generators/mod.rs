@@ -13,7 +13,8 @@ pub use random::{slivers, sphere_field, triangle_soup};
 pub use spec::{GeneratorSpec, MAX_GENERATED};
 pub use surfaces::{flat, level_for, room, teapot_in_stadium, terrain};
 
-use super::{Scene, SceneError};
+use super::{CameraSpec, PointLight, Scene, SceneError};
+use glam::Vec3;
 
 /// Generator names accepted by [`generate`] and as built-in scene names.
 pub const GENERATOR_NAMES: &[&str] = &[
@@ -51,7 +52,20 @@ pub fn generate(name: &str, n: usize, seed: u64) -> Option<Scene> {
         "terrain" => tris(terrain(n)),
         "stadium" => tris(teapot_in_stadium(n)),
         "slivers" => tris(slivers(n, seed)),
-        "room" => tris(room(n)),
+        "room" => Scene {
+            // The protocol camera looks at the closed box from outside; this one is inside.
+            camera: Some(CameraSpec {
+                eye: Vec3::new(0.5, 0.5, 0.95),
+                look_at: Vec3::new(0.5, 0.4, 0.0),
+                up: Vec3::Y,
+                fov_deg: 70.0,
+            }),
+            lights: vec![PointLight {
+                position: Vec3::new(0.5, 0.9, 0.5),
+                intensity: Vec3::ONE,
+            }],
+            ..tris(room(n))
+        },
         "flat" => tris(flat(n)),
         "mixed" => {
             // Half triangles (an icosphere of radius 0.3 at the centre), half spheres around it.
@@ -95,6 +109,9 @@ mod tests {
             assert!(s.len() > 1000, "{name}: {}", s.len());
         }
         assert!(builtin("nope").is_none());
+        let room = generate("room", 2000, 1).unwrap();
+        let inside = |p: Vec3| room.bounds().contains(p.into());
+        assert!(inside(room.camera.unwrap().eye) && inside(room.lights[0].position));
         let m = generate("mixed", 2000, 1).unwrap();
         assert!(!m.triangles.is_empty() && !m.spheres.is_empty());
     }
