@@ -4,6 +4,7 @@
 //! - [`scene`]: scenes (OBJ, generators), and the [`scene::Geometry`] interface indices use.
 //! - [`camera`] and [`rays`]: the pinhole camera, the protocol's ray sets and ray/hit files.
 //! - [`index`]: the [`index::Index`] trait, brute force (the reference) and the registry.
+//! - [`report`]: CSV tables and SVG charts every command writes through.
 //! - [`cli`]: the command line (a thin layer over the library).
 
 pub mod camera;
@@ -12,4 +13,5 @@ pub mod geometry;
 pub mod harness;
 pub mod index;
 pub mod rays;
+pub mod report;
 pub mod scene;

@@ -5,6 +5,7 @@
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
 mod brute;
+pub mod mailbox;
 mod registry;
 mod stats;
 

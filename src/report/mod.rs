@@ -1,0 +1,21 @@
+//! Report sinks shared by every command that writes results: CSV tables of `Serialize` rows and
+//! SVG charts (line, grouped bar, labelled scatter). Plots are SVG so they need no fonts and
+//! open in any browser.
+
+mod chart;
+mod csv_out;
+
+pub use chart::{BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart};
+pub use csv_out::write_csv;
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// Why a report file could not be written.
+#[derive(Debug, Error)]
+pub enum ReportError {
+    #[error("cannot write {path}: {message}")]
+    Write { path: PathBuf, message: String },
+    #[error("chart '{0}' has no finite data to draw")]
+    NoData(String),
+}
