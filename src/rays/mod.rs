@@ -2,6 +2,7 @@
 
 mod file;
 mod sets;
+pub mod spawn;
 mod splitmix;
 
 pub use file::{
