@@ -3,8 +3,12 @@
 mod gen_obj;
 mod info;
 mod rays;
+mod run;
+mod suite_args;
 mod trace;
+mod verify;
 
+use crate::geometry::TriangleKernelKind;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -21,6 +25,10 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Run the suite: every scene x index x ray set x thread count, verified, with a report.
+    Run(run::RunArgs),
+    /// Only verify: every index against brute force and each other, no timing.
+    Verify(verify::VerifyArgs),
     /// Primitive counts, bounds and degenerate triangles of a scene.
     Info(info::InfoArgs),
     /// Write a standard ray set of a scene to a .rays file.
@@ -35,6 +43,8 @@ enum Command {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Run(a) => run::run(a),
+        Command::Verify(a) => verify::run(a),
         Command::Info(a) => info::run(a),
         Command::Rays(a) => rays::run(a),
         Command::Trace(a) => trace::run(a),
@@ -57,6 +67,14 @@ pub(crate) fn parse_threads(s: &str) -> Result<usize, String> {
             "'{s}' is not a thread count: give a whole number from 1 to 4096"
         )),
     }
+}
+
+/// Parses a `--kernel` value: a triangle kernel name.
+pub(crate) fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
+    TriangleKernelKind::parse(s).ok_or_else(|| {
+        let names: Vec<_> = TriangleKernelKind::ALL.iter().map(|k| k.name()).collect();
+        format!("unknown kernel '{s}': choose one of {}", names.join(", "))
+    })
 }
 
 /// Runs `f` on a rayon pool of `threads` threads.

@@ -1,7 +1,7 @@
 //! `accelbench trace`: trace a `.rays` file with one index, write the `.hits` file, and report
 //! build time, rays/s and tests per ray.
 
-use super::{parse_threads, with_threads};
+use super::{parse_kernel, parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
 use crate::index::{Counters, IndexSpec, build_index};
 use crate::rays::{read_rays, write_hits};
@@ -33,13 +33,6 @@ pub struct TraceArgs {
     /// Triangle kernel every index uses.
     #[arg(long, default_value = "watertight", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
-}
-
-fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
-    TriangleKernelKind::parse(s).ok_or_else(|| {
-        let names: Vec<_> = TriangleKernelKind::ALL.iter().map(|k| k.name()).collect();
-        format!("unknown kernel '{s}': choose one of {}", names.join(", "))
-    })
 }
 
 pub fn run(a: TraceArgs) -> anyhow::Result<()> {

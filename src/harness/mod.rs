@@ -1,4 +1,6 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
+pub mod suite;
 pub mod timing;
 pub mod verify;
+pub mod workload;

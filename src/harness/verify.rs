@@ -21,6 +21,7 @@ pub struct Mismatch {
 impl fmt::Display for Mismatch {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let show = |h: &Option<Hit>| match h {
+            Some(h) if h.t.is_nan() => "occluded (any hit)".to_owned(),
             Some(h) => format!("prim {} t {:e} (0x{:08x})", h.prim, h.t, h.t.to_bits()),
             None => "miss".to_owned(),
         };

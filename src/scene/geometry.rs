@@ -70,6 +70,16 @@ impl SceneGeometry {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
+
+    /// Unit geometric normal of primitive `prim` at the surface point `p` (for the final hit
+    /// only); zero for a degenerate triangle. Not oriented toward the ray.
+    pub fn normal_at(&self, prim: u32, p: Vec3A) -> Vec3A {
+        let i = prim as usize;
+        match self.triangles.get(i) {
+            Some(t) => t.normal(),
+            None => self.spheres[i - self.triangles.len()].normal_at(p),
+        }
+    }
 }
 
 /// Triangle-only geometry with kernel `K`.

@@ -1,0 +1,227 @@
+//! The suite's ray sets: the protocol's **primary** and **incoherent** sets, and the secondary
+//! rays a renderer really traces from the primary hits (the methodology of Aila & Laine 2009):
+//! **shadow** rays toward each point light (any hit), one cosine-distributed **diffuse** bounce
+//! (closest hit), and short **ao** rays (ambient occlusion, any hit).
+//!
+//! Secondary rays leave the surface from [`offset_origin`] (Wächter & Binder) with `t_min = 0`,
+//! so they do not re-hit the surface they leave at any scene scale. Every set is deterministic:
+//! the same scene and sizes give the same rays, bit for bit.
+
+use super::timing::Query;
+use crate::camera::CameraError;
+use crate::geometry::{Hit, Ray};
+use crate::rays::spawn::offset_origin;
+use crate::rays::{SplitMix64, incoherent_rays, primary_rays};
+use crate::scene::Scene;
+use glam::Vec3A;
+use serde::Serialize;
+use std::f32::consts::TAU;
+
+/// A ray set of the suite.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum RaySet {
+    Primary,
+    Shadow,
+    Diffuse,
+    Ao,
+    Incoherent,
+}
+
+impl RaySet {
+    pub const ALL: [RaySet; 5] = [
+        RaySet::Primary,
+        RaySet::Shadow,
+        RaySet::Diffuse,
+        RaySet::Ao,
+        RaySet::Incoherent,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            RaySet::Primary => "primary",
+            RaySet::Shadow => "shadow",
+            RaySet::Diffuse => "diffuse",
+            RaySet::Ao => "ao",
+            RaySet::Incoherent => "incoherent",
+        }
+    }
+
+    /// What the set asks of an index: occlusion sets ask for any hit.
+    pub fn query(self) -> Query {
+        match self {
+            RaySet::Shadow | RaySet::Ao => Query::Any,
+            _ => Query::Closest,
+        }
+    }
+
+    /// `true` for the sets traced from primary hits.
+    pub fn is_secondary(self) -> bool {
+        matches!(self, RaySet::Shadow | RaySet::Diffuse | RaySet::Ao)
+    }
+}
+
+/// How many rays the generated sets hold.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SetSizes {
+    /// Width and height of the primary image (the protocol's is 1024).
+    pub primary_side: u32,
+    /// Number of incoherent rays (the protocol's is 1,048,576; a smaller count is a prefix of
+    /// the protocol set).
+    pub incoherent: usize,
+    /// Length of the ambient-occlusion rays as a fraction of the scene's bounding-box diagonal.
+    pub ao_fraction: f32,
+}
+
+/// The protocol camera's rays for the scene (its ray-set bounds).
+pub fn primary(scene: &Scene, sizes: &SetSizes) -> Result<Vec<Ray>, CameraError> {
+    primary_rays(
+        &scene.ray_set_bounds(),
+        sizes.primary_side,
+        sizes.primary_side,
+    )
+}
+
+/// The protocol's incoherent rays (SplitMix64 seeded with 42), the first `sizes.incoherent`.
+pub fn incoherent(scene: &Scene, sizes: &SetSizes) -> Vec<Ray> {
+    incoherent_rays(&scene.ray_set_bounds(), sizes.incoherent, 42)
+}
+
+/// A primary hit as a surface point to leave from: the offset origin and the unit normal facing
+/// the side the primary ray came from. `None` for a degenerate (zero-normal) triangle.
+fn surface(
+    scene_geom: &crate::scene::SceneGeometry,
+    ray: &Ray,
+    hit: &Hit,
+) -> Option<(Vec3A, Vec3A)> {
+    let p = ray.at(hit.t);
+    let mut n = scene_geom.normal_at(hit.prim, p);
+    if n == Vec3A::ZERO || !n.is_finite() {
+        return None;
+    }
+    if n.dot(ray.dir) > 0.0 {
+        n = -n;
+    }
+    Some((offset_origin(p, n), n))
+}
+
+/// A cosine-distributed unit direction about the unit normal `n` (Malley's method on the
+/// branchless orthonormal basis of Duff et al. 2017).
+fn cosine_direction(n: Vec3A, rng: &mut SplitMix64) -> Vec3A {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t = Vec3A::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let s = Vec3A::new(b, sign + n.y * n.y * a, -n.y);
+    let (r1, r2) = (rng.next_unit() as f32, rng.next_unit() as f32);
+    let r = r2.sqrt();
+    let phi = TAU * r1;
+    t * (r * phi.cos()) + s * (r * phi.sin()) + n * (1.0 - r2).max(0.0).sqrt()
+}
+
+/// The secondary rays of `set` from the primary rays and their hits (same order). Shadow rays
+/// go toward every light (the scene's, or a default one) whose side the surface faces, over
+/// `[0, 1]` (the light is at `t = 1`); diffuse rays are unbounded; ao rays have length
+/// `sizes.ao_fraction` of the bounds' diagonal.
+pub fn secondary(
+    set: RaySet,
+    scene: &Scene,
+    sizes: &SetSizes,
+    primary: &[Ray],
+    hits: &[Option<Hit>],
+) -> Vec<Ray> {
+    let geom = scene.geometry();
+    let lights = scene.lights_or_default();
+    let mut rng = SplitMix64::new(match set {
+        RaySet::Diffuse => 7,
+        _ => 11,
+    });
+    let ao_len = sizes.ao_fraction * scene.bounds().extent().length();
+    let mut out = Vec::new();
+    for (ray, hit) in primary.iter().zip(hits) {
+        let Some((o, n)) = hit.as_ref().and_then(|h| surface(&geom, ray, h)) else {
+            continue;
+        };
+        match set {
+            RaySet::Shadow => {
+                for l in &lights {
+                    let d = Vec3A::from(l.position) - o;
+                    if d.dot(n) > 0.0
+                        && let Ok(r) = Ray::new(o.into(), d.into(), 0.0, 1.0)
+                    {
+                        out.push(r);
+                    }
+                }
+            }
+            RaySet::Diffuse | RaySet::Ao => {
+                let d = cosine_direction(n, &mut rng);
+                let t_max = if set == RaySet::Ao {
+                    ao_len
+                } else {
+                    f32::INFINITY
+                };
+                if let Ok(r) = Ray::new(o.into(), d.into(), 0.0, t_max) {
+                    out.push(r);
+                }
+            }
+            RaySet::Primary | RaySet::Incoherent => unreachable!("not a secondary set"),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::TriangleKernelKind;
+    use crate::index::{IndexSpec, build_index};
+    use crate::scene::generators;
+
+    #[test]
+    fn cosine_directions_are_unit_and_in_the_hemisphere() {
+        let mut rng = SplitMix64::new(3);
+        for n in [Vec3A::Z, -Vec3A::Z, Vec3A::new(0.6, 0.0, 0.8), -Vec3A::Y] {
+            let mut mean_cos = 0.0;
+            for _ in 0..2000 {
+                let d = cosine_direction(n, &mut rng);
+                assert!((d.length() - 1.0).abs() < 1e-4, "{d:?}");
+                assert!(d.dot(n) >= -1e-6);
+                mean_cos += d.dot(n) / 2000.0;
+            }
+            // E[cos] = 2/3 for a cosine distribution.
+            assert!((mean_cos - 2.0 / 3.0).abs() < 0.03, "{mean_cos}");
+        }
+    }
+
+    #[test]
+    fn secondary_sets_leave_the_surface_toward_the_right_side() {
+        let scene = generators::generate("icosphere", 2000, 1).unwrap();
+        let sizes = SetSizes {
+            primary_side: 32,
+            incoherent: 100,
+            ao_fraction: 0.05,
+        };
+        let rays = primary(&scene, &sizes).unwrap();
+        let brute = build_index(
+            &IndexSpec::named("brute"),
+            &scene.geometry(),
+            TriangleKernelKind::Watertight,
+        )
+        .unwrap();
+        let mut hits = vec![None; rays.len()];
+        brute.closest_hits(&rays, &mut hits);
+        let n_hits = hits.iter().flatten().count();
+        assert!(n_hits > 100);
+        let diffuse = secondary(RaySet::Diffuse, &scene, &sizes, &rays, &hits);
+        assert_eq!(diffuse.len(), n_hits);
+        // From outside a closed convex sphere, diffuse rays leave outward and never re-hit it.
+        let mut back = vec![None; diffuse.len()];
+        brute.closest_hits(&diffuse, &mut back);
+        assert_eq!(back.iter().flatten().count(), 0);
+        let ao = secondary(RaySet::Ao, &scene, &sizes, &rays, &hits);
+        assert!(ao.iter().all(|r| r.t_max > 0.0 && r.t_max.is_finite()));
+        let shadow = secondary(RaySet::Shadow, &scene, &sizes, &rays, &hits);
+        assert!(!shadow.is_empty() && shadow.len() < n_hits);
+        assert!(shadow.iter().all(|r| r.t_max == 1.0));
+    }
+}

@@ -1,0 +1,208 @@
+//! The suite: verification catches an index that drops a primitive (and names the ray), the
+//! report's CSV has the promised columns and parses, and `accelbench run --quick` runs end to end.
+
+use accelbench::geometry::triangle::Watertight;
+use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
+use accelbench::harness::suite::{ResultRow, SuiteConfig, run_suite_with};
+use accelbench::harness::workload::{RaySet, SetSizes};
+use accelbench::index::{
+    BuildError, Index, IndexInfo, IndexSpec, Stats, TraceIndex, build_index, build_index_on,
+};
+use accelbench::scene::{Geometry, Triangles, generators};
+use indicatif::ProgressBar;
+use std::process::Command;
+
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+struct NoParams {}
+
+/// Brute force that never reports primitive `DROPPED`: the injected fault.
+struct DropOne;
+const DROPPED: u32 = 17;
+
+impl Index for DropOne {
+    type Params = NoParams;
+    fn build<G: Geometry>(_: &G, _: &Self::Params) -> Result<Self, BuildError> {
+        Ok(DropOne)
+    }
+    fn closest_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        for prim in (0..g.len() as u32).filter(|&p| p != DROPPED) {
+            s.prim_test();
+            if let Some(t) = g.intersect(prim, ray, ray.t_max) {
+                let h = Hit { t, prim };
+                if best.is_none_or(|b| h.is_closer_than(&b)) {
+                    best = Some(h);
+                }
+            }
+        }
+        best
+    }
+    fn any_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> bool {
+        self.closest_hit(g, ray, s).is_some()
+    }
+    fn info(&self) -> IndexInfo {
+        IndexInfo::default()
+    }
+}
+
+fn config(indices: &[&str]) -> SuiteConfig {
+    SuiteConfig {
+        indices: indices.iter().map(|n| IndexSpec::named(n)).collect(),
+        sets: vec![RaySet::Primary, RaySet::Shadow],
+        threads: vec![1, 2],
+        sizes: SetSizes {
+            primary_side: 48,
+            incoherent: 500,
+            ao_fraction: 0.05,
+        },
+        repeats: 2,
+        kernel: TriangleKernelKind::Watertight,
+        verify_budget: u64::MAX,
+        brute_timing_budget: u64::MAX,
+        timed: true,
+    }
+}
+
+#[test]
+fn verification_reports_a_dropped_primitive_with_its_ray() {
+    let scene = generators::generate("icosphere", 200, 1).unwrap();
+    let cfg = config(&["brute", "drop-one"]);
+    let build = |spec: &IndexSpec, g: &accelbench::scene::SceneGeometry| {
+        if spec.name == "drop-one" {
+            let geom = Triangles::<Watertight>::new(g.triangles.clone());
+            let b = build_index_on::<DropOne, _>("drop-one", geom, Default::default())?;
+            Ok(Box::new(b) as Box<dyn TraceIndex>)
+        } else {
+            build_index(spec, g, TriangleKernelKind::Watertight)
+        }
+    };
+    let res = run_suite_with(&[scene], &cfg, &ProgressBar::hidden(), &build).unwrap();
+    let bad: Vec<&ResultRow> = res.rows.iter().filter(|r| r.mismatches > 0).collect();
+    assert!(!bad.is_empty(), "the dropped primitive went unnoticed");
+    assert!(bad.iter().all(|r| r.index == "drop-one"));
+    assert!(
+        res.rows
+            .iter()
+            .any(|r| r.index == "brute" && r.mismatches == 0)
+    );
+    let m = &res.mismatches[0];
+    assert_eq!(m.index, "drop-one");
+    assert_eq!(m.mismatch.expected.map(|h| h.prim), Some(DROPPED));
+    // The record carries the ray's exact bits, and they replay to the same ray.
+    let b = m.mismatch.ray_bits.map(f32::from_bits);
+    let replay = Ray::new(
+        glam::Vec3::new(b[0], b[1], b[2]),
+        glam::Vec3::new(b[4], b[5], b[6]),
+        b[3],
+        b[7],
+    )
+    .unwrap();
+    let brute = build_index(
+        &IndexSpec::named("brute"),
+        &generators::generate("icosphere", 200, 1)
+            .unwrap()
+            .geometry(),
+        TriangleKernelKind::Watertight,
+    )
+    .unwrap();
+    assert_eq!(brute.closest_hit(&replay).map(|h| h.prim), Some(DROPPED));
+    assert!(
+        m.mismatch
+            .to_string()
+            .contains(&format!("{:08x}", m.mismatch.ray_bits[0]))
+    );
+}
+
+#[test]
+fn every_registered_index_agrees_in_the_suite() {
+    let scene = generators::generate("mixed", 600, 2).unwrap();
+    let names = accelbench::index::index_names();
+    let mut cfg = config(&names);
+    cfg.sets = RaySet::ALL.to_vec();
+    cfg.threads = vec![2];
+    let res =
+        accelbench::harness::suite::run_suite(&[scene], &cfg, &ProgressBar::hidden()).unwrap();
+    assert_eq!(res.mismatch_total, 0, "{:?}", res.mismatches.first());
+    assert!(res.notes.is_empty(), "{:?}", res.notes);
+    assert_eq!(res.rows.len(), names.len() * RaySet::ALL.len());
+}
+
+const COLUMNS: &[&str] = &[
+    "scene",
+    "primitives",
+    "index",
+    "params",
+    "ray_set",
+    "rays",
+    "threads",
+    "build_ms",
+    "memory_bytes",
+    "trace_ms_median",
+    "trace_ms_spread",
+    "mrays_per_s",
+    "mtests_per_s",
+    "prim_tests_per_ray",
+    "node_visits_per_ray",
+    "box_tests_per_ray",
+    "hits",
+    "mismatches",
+];
+
+#[test]
+fn quick_run_end_to_end_writes_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let o = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args([
+            "run",
+            "--quick",
+            "--quiet",
+            "--scenes",
+            "icosphere:n=800,soup:n=600,seed=2",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["results.csv", "meta.json", "summary.md", "mrays_shadow.svg"] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+    let mut r = csv::Reader::from_path(out.join("results.csv")).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_owned).collect();
+    for c in COLUMNS {
+        assert!(
+            header.iter().any(|h| h == c),
+            "column {c} missing: {header:?}"
+        );
+    }
+    let rows: Vec<ResultRow> = r.deserialize().collect::<Result<_, _>>().unwrap();
+    let scenes: std::collections::HashSet<_> = rows.iter().map(|r| r.scene.as_str()).collect();
+    assert_eq!(scenes.len(), 2, "{scenes:?}");
+    assert!(rows.iter().all(|r| r.mismatches == 0 && r.rays > 0));
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
+    assert!(meta["git_revision"].is_string() && meta["cores"].as_u64().unwrap() >= 1);
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("Verification: passed"), "{md}");
+}
+
+#[test]
+fn bad_run_arguments_fail_with_a_message() {
+    for (args, expect) in [
+        (vec!["run", "--indices", "nope"], "unknown index"),
+        (vec!["run", "--scenes", "nope"], "unknown scene"),
+        (vec!["run", "--threads", "0"], "thread count"),
+        (vec!["verify", "--indices", "brute:x=1"], "unknown field"),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+            .args(&args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?}");
+        assert!(err.contains(expect), "{args:?}: {err}");
+    }
+}
