@@ -1,0 +1,103 @@
+//! Every ray–primitive kernel on the same 4,096 ray–primitive pairs (about half of them hits);
+//! throughput in kernel calls.
+
+use accelbench::geometry::sphere::{intersect_algebraic, intersect_geometric};
+use accelbench::geometry::{
+    Aabb, Ray, Sphere, Triangle, TriangleKernelKind, intersect_box, intersect_plane,
+};
+use accelbench::rays::SplitMix64;
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::{Vec3, Vec3A};
+use std::hint::black_box;
+
+const PAIRS: usize = 4096;
+
+/// Rays from random points toward random points near the unit triangle/sphere, so about half hit.
+fn rays(rng: &mut SplitMix64) -> Vec<Ray> {
+    let mut u = || rng.next_unit() as f32;
+    (0..PAIRS)
+        .map(|_| {
+            let o = Vec3::new(u() * 4.0 - 2.0, u() * 4.0 - 2.0, -3.0);
+            let target = Vec3::new(u() * 1.6 - 0.3, u() * 1.6 - 0.3, u() * 0.2);
+            Ray::infinite(o, target - o).expect("finite, non-zero")
+        })
+        .collect()
+}
+
+fn kernels(c: &mut Criterion) {
+    let mut rng = SplitMix64::new(5);
+    let rays = rays(&mut rng);
+    let tris: Vec<Triangle> = (0..PAIRS)
+        .map(|i| {
+            let j = i as f32 * 1e-4;
+            Triangle::new(
+                Vec3A::new(j, 0.0, 0.0),
+                Vec3A::new(1.0, j, 0.1),
+                Vec3A::new(0.0, 1.0, j),
+            )
+        })
+        .collect();
+    let spheres: Vec<Sphere> = (0..PAIRS)
+        .map(|i| Sphere::new(Vec3A::new(0.5, 0.5, i as f32 * 1e-4), 0.6))
+        .collect();
+    let mut g = c.benchmark_group("kernels");
+    g.throughput(Throughput::Elements(PAIRS as u64));
+    for k in TriangleKernelKind::ALL {
+        g.bench_function(BenchmarkId::new("triangle", k.name()), |b| {
+            b.iter(|| {
+                let mut n = 0u32;
+                for (r, t) in rays.iter().zip(&tris) {
+                    n += k.intersect(black_box(t), r, r.t_max).is_some() as u32;
+                }
+                n
+            })
+        });
+    }
+    type SphereKernel = fn(&Sphere, &Ray, f32) -> Option<f32>;
+    for (name, k) in [
+        ("algebraic", intersect_algebraic as SphereKernel),
+        ("geometric", intersect_geometric),
+    ] {
+        g.bench_function(BenchmarkId::new("sphere", name), |b| {
+            b.iter(|| {
+                let mut n = 0u32;
+                for (r, s) in rays.iter().zip(&spheres) {
+                    n += k(black_box(s), r, r.t_max).is_some() as u32;
+                }
+                n
+            })
+        });
+    }
+    let boxes: Vec<Aabb> = spheres.iter().map(|s| s.bounds()).collect();
+    g.bench_function(BenchmarkId::new("box", "slabs"), |b| {
+        b.iter(|| {
+            let mut n = 0u32;
+            for (r, bx) in rays.iter().zip(&boxes) {
+                n += intersect_box(black_box(bx), r, r.t_max).is_some() as u32;
+            }
+            n
+        })
+    });
+    g.bench_function(BenchmarkId::new("box", "conservative-slab-test"), |b| {
+        b.iter(|| {
+            let mut n = 0u32;
+            for (r, bx) in rays.iter().zip(&boxes) {
+                n += black_box(bx).ray_interval(r, r.t_min, r.t_max).is_some() as u32;
+            }
+            n
+        })
+    });
+    g.bench_function(BenchmarkId::new("plane", "plane"), |b| {
+        b.iter(|| {
+            let mut n = 0u32;
+            for r in &rays {
+                n += intersect_plane(black_box(Vec3A::Z), 0.05, r, r.t_max).is_some() as u32;
+            }
+            n
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, kernels);
+criterion_main!(benches);
