@@ -4,6 +4,7 @@ mod gen_obj;
 mod info;
 mod rays;
 mod run;
+mod scale;
 mod suite_args;
 mod trace;
 mod verify;
@@ -27,6 +28,8 @@ pub struct Cli {
 enum Command {
     /// Run the suite: every scene x index x ray set x thread count, verified, with a report.
     Run(run::RunArgs),
+    /// Every index on one generator at growing sizes: build time, memory and rays/s against size.
+    Scale(scale::ScaleArgs),
     /// Only verify: every index against brute force and each other, no timing.
     Verify(verify::VerifyArgs),
     /// Primitive counts, bounds and degenerate triangles of a scene.
@@ -45,6 +48,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(a) => run::run(a),
         Command::Verify(a) => verify::run(a),
+        Command::Scale(a) => scale::run(a),
         Command::Info(a) => info::run(a),
         Command::Rays(a) => rays::run(a),
         Command::Trace(a) => trace::run(a),

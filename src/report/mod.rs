@@ -4,6 +4,7 @@
 
 mod chart;
 mod csv_out;
+pub mod scale_report;
 pub mod suite_report;
 
 pub use chart::{BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart};
