@@ -87,14 +87,22 @@ fn axis_value(v: f64, log: bool) -> Option<f64> {
     }
 }
 
-/// A compact tick label.
+/// A compact tick label: three significant digits, exponent form outside `[1e-3, 1e5)`.
 fn fmt_num(v: f64) -> String {
     let a = v.abs();
     if a != 0.0 && !(1e-3..1e5).contains(&a) {
-        format!("{v:.1e}")
+        return format!("{v:.1e}");
+    }
+    let decimals = if a == 0.0 {
+        0
     } else {
-        let s = format!("{v:.3}");
+        (2 - a.log10().floor() as i32).max(0) as usize
+    };
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
     }
 }
 
@@ -373,6 +381,9 @@ mod tests {
     #[test]
     fn tick_labels_are_compact() {
         assert_eq!(fmt_num(2.5), "2.5");
+        assert_eq!(fmt_num(158.489), "158");
+        assert_eq!(fmt_num(0.012589), "0.0126");
+        assert_eq!(fmt_num(1000.0), "1000");
         assert_eq!(fmt_num(1e6), "1.0e6");
         assert_eq!(tick_label(2.0, true), "100");
     }
