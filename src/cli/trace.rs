@@ -35,7 +35,7 @@ pub struct TraceArgs {
     kernel: TriangleKernelKind,
 }
 
-fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
+pub(crate) fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
     TriangleKernelKind::parse(s).ok_or_else(|| {
         let names: Vec<_> = TriangleKernelKind::ALL.iter().map(|k| k.name()).collect();
         format!("unknown kernel '{s}': choose one of {}", names.join(", "))
