@@ -19,6 +19,7 @@
 mod font;
 mod heatmap;
 mod image;
+mod pictures;
 mod shade;
 mod view;
 
@@ -26,6 +27,7 @@ pub use heatmap::{
     HEAT_MAX, HeatmapKind, heat_colour, heatmap_image, legend_height, pixel_costs, render_heatmap,
 };
 pub use image::Image;
+pub use pictures::{Picture, write_scene_pictures};
 pub use shade::{SHADOW_T_MAX, render_shaded};
 pub use view::{pixel_ray, view_camera};
 
