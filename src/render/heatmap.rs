@@ -162,6 +162,8 @@ pub fn legend_height(width: u32) -> u32 {
 /// [`legend_height`] rows underneath: a black swatch for 0, then the colour bar from 1 to
 /// [`HEAT_MAX`] with ticks at 1, 4, 16, 64, 256 and `1024+`. Pixel `(i, j)` for `j < height` is
 /// `heat_colour(costs[j * width + i])`.
+///
+/// Panics if `costs.len() != width * height` (a caller bug, like a batch query's output slice).
 pub fn heatmap_image(costs: &[u64], width: u32, height: u32) -> Image {
     assert_eq!(
         costs.len(),
@@ -265,6 +267,8 @@ mod tests {
 
     #[test]
     fn image_is_costs_then_legend_at_every_width() {
+        let empty = heatmap_image(&[], 0, 0);
+        assert_eq!(empty.height(), legend_height(0));
         for w in [1u32, 5, 40, 64, 100, 256, 600] {
             let h = 3;
             let costs: Vec<u64> = (0..(w * h) as u64).map(|k| k * 7).collect();

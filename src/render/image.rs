@@ -61,7 +61,7 @@ impl Image {
 
     /// The rows as mutable byte slices (for filling rows in parallel).
     pub(crate) fn rows_mut(&mut self) -> std::slice::ChunksExactMut<'_, u8> {
-        self.rgb.chunks_exact_mut(self.width as usize * 3)
+        self.rgb.chunks_exact_mut(self.width.max(1) as usize * 3)
     }
 
     /// Appends the rows of `below` (same width) under this image.

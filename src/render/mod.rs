@@ -1,7 +1,7 @@
 //! Pictures of a scene through any index: Phong-shaded renders with hard and soft shadows, and
 //! per-pixel cost heat maps (primitive tests or node visits of each camera ray).
 //!
-//! Every picture traces through the object-safe [`TraceIndex`], so all indices render through
+//! Every picture traces through the object-safe [`TraceIndex`](crate::index::TraceIndex), so all indices render through
 //! the same code, and the shading math is deterministic (area-light samples are seeded by pixel
 //! and light, not by thread): the same hits give byte-identical images, whichever index.
 //!
@@ -33,8 +33,6 @@ pub use view::{pixel_ray, view_camera};
 
 use crate::camera::CameraError;
 use crate::geometry::RayError;
-#[allow(unused_imports)] // for the doc links
-use crate::index::TraceIndex;
 use std::path::PathBuf;
 use thiserror::Error;
 
