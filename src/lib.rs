@@ -4,6 +4,7 @@
 //! - [`scene`]: scenes (OBJ, generators), and the [`scene::Geometry`] interface indices use.
 //! - [`camera`] and [`rays`]: the pinhole camera, the protocol's ray sets and ray/hit files.
 //! - [`index`]: the [`index::Index`] trait, brute force (the reference) and the registry.
+//! - [`render`]: Phong renders with shadows and per-pixel cost heat maps through any index.
 //! - [`report`]: CSV tables and SVG charts every command writes through.
 //! - [`cli`]: the command line (a thin layer over the library).
 
@@ -13,5 +14,6 @@ pub mod geometry;
 pub mod harness;
 pub mod index;
 pub mod rays;
+pub mod render;
 pub mod report;
 pub mod scene;

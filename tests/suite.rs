@@ -76,7 +76,14 @@ fn verification_reports_a_dropped_primitive_with_its_ray() {
             build_index(spec, g, TriangleKernelKind::Watertight)
         }
     };
-    let res = run_suite_with(&[scene], &cfg, &ProgressBar::hidden(), &build).unwrap();
+    let res = run_suite_with(
+        &[scene],
+        &cfg,
+        &ProgressBar::hidden(),
+        &build,
+        &mut |_, _| {},
+    )
+    .unwrap();
     let bad: Vec<&ResultRow> = res.rows.iter().filter(|r| r.mismatches > 0).collect();
     assert!(!bad.is_empty(), "the dropped primitive went unnoticed");
     assert!(bad.iter().all(|r| r.index == "drop-one"));

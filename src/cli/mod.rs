@@ -3,6 +3,7 @@
 mod gen_obj;
 mod info;
 mod rays;
+mod render;
 mod run;
 mod scale;
 mod suite_args;
@@ -40,6 +41,8 @@ enum Command {
     Trace(trace::TraceArgs),
     /// Write a generator's triangles as an .obj file (by default into meshes/).
     Gen(gen_obj::GenArgs),
+    /// Render a scene through an index as a PNG: Phong shading with shadows, or a cost heat map.
+    Render(render::RenderArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -53,6 +56,7 @@ pub fn main() -> ExitCode {
         Command::Rays(a) => rays::run(a),
         Command::Trace(a) => trace::run(a),
         Command::Gen(a) => gen_obj::run(a),
+        Command::Render(a) => render::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,8 +3,11 @@
 
 use super::parse_threads;
 use super::suite_args::SuiteArgs;
-use crate::harness::suite::{check_specs, run_suite};
+use crate::harness::suite::{check_specs, run_suite_with};
+use crate::index::{TraceIndex, build_index};
+use crate::render::{Picture, RenderOptions, write_scene_pictures};
 use crate::report::suite_report::{RunMeta, run_id_now, write_suite_report};
+use crate::scene::Scene;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -23,6 +26,10 @@ pub struct RunArgs {
     /// Report directory [default: reports/<run id>].
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Side of the per-scene shaded render and heat maps in the report; 0 for none
+    /// [default: 256, quick 128].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=4096))]
+    picture_size: Option<u32>,
 }
 
 /// A progress bar on stderr, hidden with `--quiet` or when stderr is not a terminal.
@@ -51,6 +58,93 @@ pub(crate) fn default_threads(given: &[usize]) -> Vec<usize> {
     t
 }
 
+/// The report's pictures: per scene a shaded render and every index's heat maps (brute force's
+/// are left out: it tests every primitive on every ray, one flat colour at great cost).
+struct ScenePictures {
+    dir: PathBuf,
+    side: u32,
+    written: Vec<(String, Vec<Picture>)>,
+    error: Option<anyhow::Error>,
+}
+
+impl ScenePictures {
+    fn new(dir: PathBuf, side: u32) -> ScenePictures {
+        ScenePictures {
+            dir,
+            side,
+            written: Vec::new(),
+            error: None,
+        }
+    }
+
+    fn add(&mut self, scene: &Scene, indices: &[&dyn TraceIndex]) {
+        let fast: Vec<&dyn TraceIndex> = indices
+            .iter()
+            .copied()
+            .filter(|i| i.name() != "brute")
+            .collect();
+        if self.side == 0 || fast.is_empty() || self.error.is_some() {
+            return;
+        }
+        let opts = RenderOptions {
+            width: self.side,
+            height: self.side,
+        };
+        let r = std::fs::create_dir_all(&self.dir)
+            .map_err(anyhow::Error::from)
+            .and_then(|()| Ok(write_scene_pictures(scene, &fast, &self.dir, &opts)?));
+        match r {
+            Ok(p) => self.written.push((scene.name.clone(), p)),
+            Err(e) => self.error = Some(e.context(format!("rendering {}", scene.name))),
+        }
+    }
+
+    /// The summary's picture section (paths relative to the report directory).
+    fn markdown(self, report: &std::path::Path) -> anyhow::Result<String> {
+        if let Some(e) = self.error {
+            return Err(e);
+        }
+        let mut s = String::new();
+        if self.written.is_empty() {
+            return Ok(s);
+        }
+        s.push_str(
+            "## Pictures\n\nPer scene: the shaded render (identical through every index), then \
+             each index's heat maps of primitive tests and of node/cell visits per camera ray \
+             (fixed log scale: black 0, blue 1 ... red 1024+).\n\n",
+        );
+        for (scene, pics) in &self.written {
+            let rel = |p: &Picture| {
+                p.path
+                    .strip_prefix(report)
+                    .unwrap_or(&p.path)
+                    .display()
+                    .to_string()
+            };
+            s.push_str(&format!("### {scene}\n\n"));
+            let mut rows: Vec<(String, Vec<String>)> = Vec::new();
+            for p in pics {
+                match p.caption.rsplit_once(' ') {
+                    Some((index, _kind)) => match rows.last_mut() {
+                        Some((i, cells)) if i == index => cells.push(rel(p)),
+                        _ => rows.push((index.to_owned(), vec![rel(p)])),
+                    },
+                    None => s.push_str(&format!("![{scene} {}]({})\n\n", p.caption, rel(p))),
+                }
+            }
+            s.push_str(
+                "| index | primitive tests per ray | node/cell visits per ray |\n|---|---|---|\n",
+            );
+            for (index, cells) in rows {
+                let imgs: Vec<String> = cells.iter().map(|c| format!("![{index}]({c})")).collect();
+                s.push_str(&format!("| {index} | {} |\n", imgs.join(" | ")));
+            }
+            s.push('\n');
+        }
+        Ok(s)
+    }
+}
+
 pub fn run(a: RunArgs) -> anyhow::Result<()> {
     let repeats = a
         .repeats
@@ -69,9 +163,20 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         .unwrap_or_else(|| PathBuf::from("reports").join(&run_id));
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let pb = progress_bar(a.suite.quiet);
-    let res = run_suite(&scenes, &cfg, &pb)?;
+    let side = a
+        .picture_size
+        .unwrap_or(if a.suite.quick { 128 } else { 256 });
+    let mut pictures = ScenePictures::new(dir.join("pictures"), side);
+    let kernel = cfg.kernel;
+    let res = run_suite_with(
+        &scenes,
+        &cfg,
+        &pb,
+        &|s, g| build_index(s, g, kernel),
+        &mut |scene, indices| pictures.add(scene, indices),
+    )?;
     let meta = RunMeta::collect(run_id, command, cfg);
-    write_suite_report(&dir, &meta, &res, "")
+    write_suite_report(&dir, &meta, &res, &pictures.markdown(&dir)?)
         .with_context(|| format!("writing the report to {}", dir.display()))?;
     let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap_or_default();
     println!("{summary}");

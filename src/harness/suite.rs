@@ -124,6 +124,10 @@ impl Pools {
 pub type IndexBuilder<'a> =
     &'a dyn Fn(&IndexSpec, &SceneGeometry) -> Result<Box<dyn TraceIndex>, BuildError>;
 
+/// Called once per scene after all its ray sets, with the indices built for it (in list order),
+/// e.g. to render pictures with them; never inside a timed pass.
+pub type SceneHook<'a> = &'a mut (dyn FnMut(&Scene, &[&dyn TraceIndex]) + Send);
+
 /// Runs the suite on `scenes` with the registry's indices. Fails only when the run cannot start
 /// (thread pools); index build errors and mismatches are reported in the result.
 pub fn run_suite(
@@ -132,7 +136,13 @@ pub fn run_suite(
     progress: &ProgressBar,
 ) -> Result<SuiteResult, rayon::ThreadPoolBuildError> {
     let kernel = cfg.kernel;
-    run_suite_with(scenes, cfg, progress, &|s, g| build_index(s, g, kernel))
+    run_suite_with(
+        scenes,
+        cfg,
+        progress,
+        &|s, g| build_index(s, g, kernel),
+        &mut |_, _| {},
+    )
 }
 
 /// [`run_suite`] with indices built by `build` (tests inject faulty indices this way).
@@ -141,12 +151,20 @@ pub fn run_suite_with(
     cfg: &SuiteConfig,
     progress: &ProgressBar,
     build: IndexBuilder,
+    after_scene: SceneHook,
 ) -> Result<SuiteResult, rayon::ThreadPoolBuildError> {
     let pools = Pools::new(&cfg.threads)?;
     let mut res = SuiteResult::default();
     progress.set_length((scenes.len() * cfg.sets.len() * cfg.indices.len()) as u64);
     for scene in scenes {
-        run_scene(scene, cfg, &pools, progress, build, &mut res);
+        let built = run_scene(scene, cfg, &pools, progress, build, &mut res);
+        let refs: Vec<&dyn TraceIndex> = built.iter().map(|b| b.as_ref()).collect();
+        pools
+            .0
+            .last()
+            .unwrap()
+            .1
+            .install(|| after_scene(scene, &refs));
     }
     progress.finish_and_clear();
     Ok(res)
@@ -167,7 +185,7 @@ fn run_scene(
     progress: &ProgressBar,
     build: IndexBuilder,
     res: &mut SuiteResult,
-) {
+) -> Vec<Box<dyn TraceIndex>> {
     let geom = scene.geometry();
     let mut built: Vec<Box<dyn TraceIndex>> = Vec::new();
     for spec in &cfg.indices {
@@ -195,7 +213,7 @@ fn run_scene(
         Ok(r) => r,
         Err(e) => {
             note(res, scene, "all ray sets".into(), format!("camera: {e}"));
-            return;
+            return built;
         }
     };
     let needs_primary_hits = cfg.sets.iter().any(|s| s.is_secondary());
@@ -242,6 +260,7 @@ fn run_scene(
             res,
         );
     }
+    built
 }
 
 /// The rays brute force verifies (all, or every k-th) and their reference results.

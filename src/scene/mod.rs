@@ -1,20 +1,24 @@
 //! Scenes: primitives stored per type, lights, an optional camera, and where they came from.
 
+mod area_light;
 mod error;
 pub mod file;
 pub mod generators;
 mod geometry;
+mod material;
 mod meshes_dir;
 pub mod obj;
 pub mod obj_writer;
 pub mod transform;
 
+pub use area_light::{AreaLight, MAX_AREA_LIGHT_SAMPLES};
 pub use error::SceneError;
 pub use geometry::{Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, with_geometry};
+pub use material::{Material, MaterialMap};
 pub use meshes_dir::meshes_in;
 
 use crate::geometry::{Aabb, Sphere, Triangle};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -63,6 +67,10 @@ pub struct Scene {
     /// Bounds the protocol's standard ray sets use: for OBJ files, every `v` line (also unused
     /// vertices); otherwise the primitives' bounds.
     pub reference_bounds: Option<Aabb>,
+    /// Materials per object (empty: every primitive uses [`Material::DEFAULT`]).
+    pub materials: MaterialMap,
+    /// Rectangular area lights (in addition to `lights`).
+    pub area_lights: Vec<AreaLight>,
 }
 
 impl Scene {
@@ -165,6 +173,27 @@ impl Scene {
         };
         scene.validate()?;
         Ok(scene)
+    }
+
+    /// The material of primitive `prim` (triangles first, then spheres).
+    #[inline]
+    pub fn material(&self, prim: u32) -> &Material {
+        let i = prim as usize;
+        match i.checked_sub(self.triangles.len()) {
+            None => self.materials.triangle(i),
+            Some(s) => self.materials.sphere(s),
+        }
+    }
+
+    /// Unit geometric normal of primitive `prim` at the surface point `p` (a triangle's from its
+    /// winding, a sphere's outward); for shading the final hit only.
+    #[inline]
+    pub fn normal(&self, prim: u32, p: Vec3A) -> Vec3A {
+        let i = prim as usize;
+        match self.triangles.get(i) {
+            Some(t) => t.normal(),
+            None => self.spheres[i - self.triangles.len()].normal_at(p),
+        }
     }
 
     /// The scene's lights, or one default light above the front-right of the bounds when it has

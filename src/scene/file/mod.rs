@@ -1,5 +1,5 @@
-//! Scene files in TOML: OBJ meshes and generators placed by transforms, spheres, a camera and
-//! point lights (format in [`schema`]).
+//! Scene files in TOML: OBJ meshes and generators placed by transforms, spheres, a camera,
+//! point and area lights, and materials per object (format in [`schema`]).
 //!
 //! Primitive ids: all triangles, then all spheres. Within each kind, objects contribute in the
 //! order their tables appear in the file (`[[mesh]]` and `[[generator]]` tables interleaved as
@@ -10,10 +10,13 @@ pub mod schema;
 
 use super::generators::{DEFAULT_SEED, DEFAULT_SIZE, GeneratorSpec};
 use super::transform::{Transform, TransformError};
-use super::{Scene, SceneError, obj};
+use super::{Material, Scene, SceneError, obj};
 use crate::camera::Camera;
 use glam::Vec3A;
-use schema::{GeneratorEntry, MeshEntry, RotateSpec, ScaleSpec, SceneFile, SphereEntry};
+use schema::{
+    GeneratorEntry, MaterialRef, MeshEntry, RotateSpec, ScaleSpec, SceneFile, SphereEntry,
+};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// One table of the file that contributes primitives.
@@ -59,6 +62,10 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
         ));
     }
 
+    for (name, m) in &file.materials {
+        m.validate()
+            .map_err(|e| bad(format!("[material.{name}]: {e}")))?;
+    }
     let dir = path.parent().unwrap_or(Path::new(""));
     let name = file.name.clone().unwrap_or_else(|| {
         path.file_stem()
@@ -78,6 +85,10 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 let what = format!("[[mesh]] path = \"{}\"", m.path);
                 let t = transform(m.scale, m.rotate, m.translate).map_err(|e| at(&what, &e))?;
                 let mesh = obj::load_obj(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
+                let material = material(&m.material, &file.materials).map_err(|e| at(&what, &e))?;
+                scene
+                    .materials
+                    .start_triangles(scene.triangles.len(), material);
                 scene
                     .triangles
                     .extend(mesh.triangles.iter().map(|tri| t.triangle(tri)));
@@ -92,6 +103,11 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 )
                 .map_err(|e| at(&what, &e))?;
                 let generated = spec.generate().map_err(|e| at(&what, &e))?;
+                let material = material(&g.material, &file.materials).map_err(|e| at(&what, &e))?;
+                scene
+                    .materials
+                    .start_triangles(scene.triangles.len(), material);
+                scene.materials.start_spheres(scene.spheres.len(), material);
                 scene
                     .triangles
                     .extend(generated.triangles.iter().map(|tri| t.triangle(tri)));
@@ -112,6 +128,9 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                         ),
                     ));
                 }
+                let material =
+                    material(&s.material, &file.materials).map_err(|e| at("[[sphere]]", &e))?;
+                scene.materials.start_spheres(scene.spheres.len(), material);
                 scene.spheres.push(crate::geometry::Sphere::new(
                     Vec3A::from(s.center),
                     s.radius,
@@ -143,10 +162,37 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
             )));
         }
     }
+    for (i, l) in file.area_lights.iter().enumerate() {
+        l.validate()
+            .map_err(|e| bad(format!("[[area_light]] {}: {e}", i + 1)))?;
+    }
+    scene.area_lights = file.area_lights;
     scene.camera = file.camera;
     scene.lights = file.lights;
     scene.validate().map_err(|e| bad(e.to_string()))?;
     Ok(scene)
+}
+
+/// An object's material: a `[material.NAME]` by name, or an inline table (validated).
+fn material(
+    r: &Option<MaterialRef>,
+    named: &BTreeMap<String, Material>,
+) -> Result<Option<Material>, String> {
+    match r {
+        None => Ok(None),
+        Some(MaterialRef::Named(name)) => named.get(name).copied().map(Some).ok_or_else(|| {
+            let known: Vec<&str> = named.keys().map(String::as_str).collect();
+            format!(
+                "material \"{name}\" is not defined: add a [material.{name}] table{}",
+                if known.is_empty() {
+                    String::new()
+                } else {
+                    format!(" or use one of {}", known.join(", "))
+                }
+            )
+        }),
+        Some(MaterialRef::Inline(m)) => m.validate().map(|()| Some(*m)),
+    }
 }
 
 /// The transform of an object's `scale`, `rotate` and `translate` keys.

@@ -28,10 +28,28 @@
 //! [[sphere]]
 //! center = [0.5, 0.5, 0.5]
 //! radius = 0.1
+//! material = "red"                       # any object: a name from [material.NAME] ...
+//! # material = { color = [1, 0, 0], specular = 0.5 }   # ... or an inline material
+//!
+//! [material.red]                         # named materials; every key optional
+//! color = [0.8, 0.1, 0.1]                # default [0.8, 0.8, 0.8]
+//! ambient = 0.1                          # default 0.1
+//! diffuse = 0.7                          # default 0.7
+//! specular = 0.2                         # default 0.2
+//! shininess = 32                         # default 32
+//! emission = [0, 0, 0]                   # default black
+//!
+//! [[area_light]]                         # any number: corner + a * edge1 + b * edge2
+//! corner = [-0.5, 2, -0.5]
+//! edge1 = [1, 0, 0]
+//! edge2 = [0, 0, 1]
+//! intensity = [1, 1, 1]                  # default white; the total over the rectangle
+//! samples = 4                            # strata per edge (4 x 4 shadow rays); default 4
 //! ```
 
-use crate::scene::{CameraSpec, PointLight};
+use crate::scene::{AreaLight, CameraSpec, Material, PointLight};
 use serde::Deserialize;
+use std::collections::BTreeMap;
 use toml::Spanned;
 
 /// A whole scene file.
@@ -49,6 +67,22 @@ pub struct SceneFile {
     pub generators: Vec<Spanned<GeneratorEntry>>,
     #[serde(default, rename = "sphere")]
     pub spheres: Vec<Spanned<SphereEntry>>,
+    /// `[material.NAME]` tables.
+    #[serde(default, rename = "material")]
+    pub materials: BTreeMap<String, Material>,
+    #[serde(default, rename = "area_light")]
+    pub area_lights: Vec<AreaLight>,
+}
+
+/// An object's `material`: the name of a `[material.NAME]` table, or an inline table.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a material name (from a [material.NAME] table) or an inline table like { color = [r, g, b], diffuse = 0.7 } with keys color, ambient, diffuse, specular, shininess, emission"
+)]
+pub enum MaterialRef {
+    Named(String),
+    Inline(Material),
 }
 
 /// `[[mesh]]`: an OBJ file placed by a transform.
@@ -60,6 +94,7 @@ pub struct MeshEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 /// `[[generator]]`: a built-in generator with its size and seed, placed by a transform.
@@ -72,6 +107,7 @@ pub struct GeneratorEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 /// `[[sphere]]`: one sphere.
@@ -80,6 +116,7 @@ pub struct GeneratorEntry {
 pub struct SphereEntry {
     pub center: [f32; 3],
     pub radius: f32,
+    pub material: Option<MaterialRef>,
 }
 
 /// `scale = s` (uniform) or `scale = [sx, sy, sz]`.

@@ -1,4 +1,5 @@
 use super::*;
+use crate::scene::Material;
 use crate::scene::generators::generate;
 use std::fs;
 
@@ -143,4 +144,93 @@ fn bad_files_name_what_to_fix() {
 fn missing_scene_file_is_io_error() {
     let e = load_scene_file(Path::new("/nonexistent/scene.toml")).unwrap_err();
     assert!(matches!(e, SceneError::Io { .. }), "{e:?}");
+}
+
+#[test]
+fn materials_by_name_or_inline_per_object_and_area_lights() {
+    let s = load(
+        r#"
+[material.red]
+color = [0.9, 0.1, 0.1]
+specular = 0
+[[mesh]]
+path = "tri.obj"
+material = "red"
+[[generator]]
+name = "mixed"
+n = 40
+material = { color = [0, 0, 1], emission = [0.5, 0.5, 0.5] }
+[[mesh]]
+path = "tri.obj"
+[[sphere]]
+center = [5, 5, 5]
+radius = 0.5
+material = "red"
+[[area_light]]
+corner = [0, 3, 0]
+edge1 = [1, 0, 0]
+edge2 = [0, 0, 1]
+samples = 3
+"#,
+    )
+    .unwrap();
+    let red = Material {
+        color: glam::Vec3::new(0.9, 0.1, 0.1),
+        specular: 0.0,
+        ..Material::DEFAULT
+    };
+    let mixed = generate("mixed", 40, 1).unwrap();
+    let (nt, ns) = (mixed.triangles.len(), mixed.spheres.len());
+    assert_eq!(*s.material(0), red);
+    assert_eq!(s.material(1).color, glam::Vec3::Z);
+    assert_eq!(s.material(nt as u32).emission, glam::Vec3::splat(0.5));
+    assert_eq!(*s.material(nt as u32 + 1), Material::DEFAULT, "no material");
+    let first_sphere = s.triangles.len() as u32;
+    assert_eq!(s.material(first_sphere).color, glam::Vec3::Z);
+    assert_eq!(*s.material(first_sphere + ns as u32), red);
+    assert_eq!(s.area_lights.len(), 1);
+    assert_eq!(s.area_lights[0].samples, 3);
+    assert_eq!(s.area_lights[0].intensity, glam::Vec3::ONE);
+    // Without materials every primitive uses the default.
+    let plain = load("[[mesh]]\npath = \"tri.obj\"\n").unwrap();
+    assert_eq!(*plain.material(0), Material::DEFAULT);
+}
+
+#[test]
+fn bad_materials_and_area_lights_name_what_to_fix() {
+    let tri = "[[mesh]]\npath = \"tri.obj\"\n";
+    for (toml, expect) in [
+        (format!("{tri}material = \"gold\"\n"), "[material.gold]"),
+        (
+            format!("[material.a]\ncolor = [1, 1, 1]\n{tri}material = \"b\"\n"),
+            "use one of a",
+        ),
+        (format!("[material.a]\ndiffuse = -1\n{tri}"), "[material.a]"),
+        (format!("[material.a]\nglow = 1\n{tri}"), "unknown field"),
+        (
+            format!("{tri}material = {{ shine = 3 }}\n"),
+            "a material name",
+        ),
+        (
+            format!("{tri}material = {{ shininess = nan }}\n"),
+            "shininess from 0",
+        ),
+        (
+            format!("{tri}[[area_light]]\ncorner = [0,0,0]\nedge1 = [1,0,0]\nedge2 = [2,0,0]\n"),
+            "[[area_light]] 1",
+        ),
+        (
+            format!(
+                "{tri}[[area_light]]\ncorner = [0,0,0]\nedge1 = [1,0,0]\nedge2 = [0,0,1]\nsamples = 1000\n"
+            ),
+            "1 to 64 strata",
+        ),
+        (
+            format!("{tri}[[area_light]]\ncorner = [0,0,0]\nedge1 = [1,0,0]\nedge3 = [0,0,1]\n"),
+            "unknown field",
+        ),
+    ] {
+        let msg = error(&toml);
+        assert!(msg.contains(expect), "expected '{expect}' in: {msg}");
+    }
 }
