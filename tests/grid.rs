@@ -1,0 +1,253 @@
+//! The grid against brute force: every agreement scene, rays along and starting on cell
+//! boundaries, flat and one-primitive scenes, at most one test per primitive per ray, bad
+//! parameters, and a small `sweep grid` run.
+
+mod common;
+
+use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
+use accelbench::index::{
+    BuildError, Counters, Grid, GridParams, Index, IndexSpec, build_index, build_index_on,
+};
+use accelbench::scene::{Geometry, Scene, Triangles, generators};
+use common::{agreement_rays, assert_agrees, assert_agrees_everywhere};
+use glam::{Vec3, Vec3A};
+use std::collections::HashSet;
+
+type Tris = Triangles<accelbench::geometry::triangle::Watertight>;
+
+#[test]
+fn agrees_with_brute_force_everywhere() {
+    assert_agrees_everywhere("grid", 600);
+}
+
+#[test]
+fn agrees_at_coarse_fine_and_lopsided_resolutions() {
+    for spec in [
+        "grid:res=[1,1,1]",
+        "grid:res=[37,3,50]",
+        "grid:lambda=0.25",
+        "grid:lambda=40",
+    ] {
+        for name in ["soup", "stadium", "mixed", "slivers"] {
+            let scene = generators::generate(name, 2000, 3).unwrap();
+            assert_agrees(spec, &scene, &agreement_rays(&scene, 300));
+        }
+    }
+}
+
+/// Rays exactly on the grid's own cell boundary planes (and edges), axis-parallel with +-0.0
+/// components, from outside and starting on a boundary inside.
+fn boundary_rays(grid: &Grid) -> Vec<Ray> {
+    let l = grid.layout();
+    let mut rays = Vec::new();
+    let b = l.bounds;
+    let out = (b.extent().length() + 1.0) * 2.0;
+    for a in 0..3 {
+        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
+        // Every few planes on the two other axes: the ray runs along an edge of four cells.
+        for &pu in l.planes[u].iter().step_by(2) {
+            for &pv in l.planes[v].iter().step_by(3) {
+                for sign in [1.0f32, -1.0] {
+                    for zero in [0.0f32, -0.0] {
+                        let mut o = [0.0f32; 3];
+                        o[u] = pu;
+                        o[v] = pv;
+                        let mut d = [zero; 3];
+                        d[a] = sign;
+                        // From outside the grid.
+                        o[a] = b.center()[a] - sign * out;
+                        rays.push(Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap());
+                        // Starting on a boundary plane inside.
+                        let mid = l.planes[a][l.planes[a].len() / 2];
+                        o[a] = mid;
+                        rays.push(Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap());
+                    }
+                }
+            }
+        }
+    }
+    // Oblique rays starting on cell corners.
+    for (i, &px) in l.planes[0].iter().enumerate() {
+        let py = l.planes[1][i % l.planes[1].len()];
+        let pz = l.planes[2][(i * 7) % l.planes[2].len()];
+        for d in [Vec3::new(0.3, -0.5, 0.8), Vec3::new(-1.0, 1.0, 1.0)] {
+            rays.push(Ray::infinite(Vec3::new(px, py, pz), d).unwrap());
+        }
+    }
+    rays
+}
+
+#[test]
+fn rays_along_and_from_cell_boundaries() {
+    for name in ["room", "soup", "stadium", "flat", "icosphere", "terrain"] {
+        let scene = generators::generate(name, 2000, 5).unwrap();
+        for spec in ["grid", "grid:res=[8,5,12]"] {
+            let p: IndexSpec = spec.parse().unwrap();
+            let params = accelbench::index::parse_params::<Grid>(&p).unwrap();
+            let grid = build_index_on::<Grid, Tris>(
+                spec,
+                Tris::new(scene.triangles.clone().into()),
+                params,
+            )
+            .unwrap();
+            let rays = boundary_rays(&grid.index);
+            assert!(rays.len() > 100);
+            assert_agrees(spec, &scene, &rays);
+        }
+    }
+}
+
+#[test]
+fn flat_and_one_primitive_scenes() {
+    let flat = generators::generate("flat", 1000, 1).unwrap();
+    assert_eq!(flat.bounds().extent().min_element(), 0.0);
+    let g = Tris::new(flat.triangles.clone().into());
+    let grid = Grid::build(&g, &GridParams::default()).unwrap();
+    assert!(grid.layout().res.contains(&1));
+    assert_agrees("grid", &flat, &agreement_rays(&flat, 1000));
+    // A ray in the plane of the flat scene, along each axis.
+    let c = Vec3::from(flat.bounds().center());
+    let flat_axis = flat
+        .bounds()
+        .extent()
+        .to_array()
+        .iter()
+        .position(|&e| e == 0.0)
+        .unwrap();
+    let mut in_plane = Vec::new();
+    for a in 0..3 {
+        if a != flat_axis {
+            let mut d = Vec3::ZERO;
+            d[a] = 1.0;
+            in_plane.push(Ray::infinite(c - d * 10.0, d).unwrap());
+        }
+    }
+    assert_agrees("grid", &flat, &in_plane);
+
+    let one = Scene::from_triangles("one", vec![Triangle::new(Vec3A::ZERO, Vec3A::X, Vec3A::Y)]);
+    let hit = Ray::infinite(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
+    let miss = Ray::infinite(Vec3::new(0.8, 0.8, 1.0), Vec3::NEG_Z).unwrap();
+    let mut rays = agreement_rays(&one, 200);
+    rays.extend([hit, miss]);
+    assert_agrees("grid", &one, &rays);
+    let built = build_index(
+        &"grid".parse().unwrap(),
+        &one.geometry(),
+        TriangleKernelKind::Watertight,
+    )
+    .unwrap();
+    assert!(built.closest_hit(&hit).is_some() && built.closest_hit(&miss).is_none());
+    // One sphere, and one degenerate (point) triangle.
+    let sphere = generators::generate("spheres", 1, 1).unwrap();
+    assert_agrees("grid", &sphere, &agreement_rays(&sphere, 200));
+    let point = Scene::from_triangles(
+        "point",
+        vec![Triangle::new(Vec3A::ONE, Vec3A::ONE, Vec3A::ONE)],
+    );
+    assert_agrees(
+        "grid",
+        &point,
+        &[Ray::infinite(Vec3::ZERO, Vec3::ONE).unwrap()],
+    );
+}
+
+/// Exact check of "each primitive at most once per ray": on a ray that misses two big
+/// triangles parallel to it, every cell it crosses holds one of them, so the grid visits every
+/// cell on its path and tests exactly that one triangle once.
+#[test]
+fn each_primitive_tested_once_on_a_long_walk() {
+    let big = |z: f32| {
+        [
+            Triangle::new(
+                Vec3A::new(0.0, 0.0, z),
+                Vec3A::new(8.0, 0.0, z),
+                Vec3A::new(8.0, 8.0, z),
+            ),
+            Triangle::new(
+                Vec3A::new(0.0, 0.0, z),
+                Vec3A::new(8.0, 8.0, z),
+                Vec3A::new(0.0, 8.0, z),
+            ),
+        ]
+    };
+    let tris: Vec<Triangle> = [big(0.0), big(2.0), big(8.0)].concat();
+    let g = Tris::new(tris.into());
+    let grid = Grid::build(
+        &g,
+        &GridParams {
+            res: Some([16, 16, 16]),
+            lambda: None,
+        },
+    )
+    .unwrap();
+    // z = 1.5 lies in the cells z in [1.0, 1.5] and [1.5, 2.0]; the ray sits on that boundary
+    // and runs along x, in the cells holding the two triangles at z = 2.
+    let r = Ray::infinite(Vec3::new(-1.0, 3.3, 1.5), Vec3::X).unwrap();
+    let mut c = Counters::default();
+    assert_eq!(grid.closest_hit(&g, &r, &mut c), None);
+    assert_eq!(c.node_visits, 16, "one visit per cell along x");
+    assert_eq!(
+        c.prim_tests, 2,
+        "two triangles stored in all 16 cells, each tested once"
+    );
+}
+
+/// On the bunny (or a soup), the tests a ray makes equal the distinct primitives of the cells
+/// it visited (the walk up to the cell where it stopped): never more (mailbox), never fewer (no
+/// cell's primitive skipped).
+#[test]
+fn prim_tests_equal_distinct_primitives_of_visited_cells() {
+    let scene = common::bunny().unwrap_or_else(|| generators::generate("soup", 20_000, 2).unwrap());
+    let g = Tris::new(scene.triangles.clone().into());
+    let grid = Grid::build(&g, &GridParams::default()).unwrap();
+    let rays = agreement_rays(&scene, 2000);
+    let mut long_walks = 0;
+    for r in &rays {
+        let mut c = Counters::default();
+        let hit = grid.closest_hit(&g, r, &mut c);
+        let mut seen = HashSet::new();
+        let mut visits = 0;
+        if let Some(walk) = grid.walk(r) {
+            for (cell, t_exit) in walk {
+                visits += 1;
+                seen.extend(grid.cell_prims(cell).iter().copied());
+                if hit.is_some_and(|h| h.t <= t_exit) {
+                    break;
+                }
+            }
+        }
+        assert_eq!(c.prim_tests, seen.len() as u64, "ray {r:?}");
+        assert_eq!(c.node_visits, visits);
+        assert!(c.prim_tests <= g.len() as u64);
+        if visits > 10 {
+            long_walks += 1;
+        }
+    }
+    assert!(
+        long_walks > 100,
+        "the rays should cross many cells ({long_walks})"
+    );
+}
+
+#[test]
+fn bad_parameters_are_typed_errors() {
+    let geom = generators::generate("soup", 100, 1).unwrap().geometry();
+    let build =
+        |s: &str| build_index(&s.parse()?, &geom, TriangleKernelKind::Watertight).map(|_| ());
+    for bad in [
+        "grid:res=[0,4,4]",
+        "grid:res=[100000,100000,100000]",
+        "grid:res=[4,4]",
+        "grid:lambda=0",
+        "grid:lambda=-3",
+        "grid:lambda=nan",
+        "grid:lambda=inf",
+        "grid:lambda=2,res=[4,4,4]",
+        "grid:cells=4",
+    ] {
+        let err = build(bad).unwrap_err();
+        assert!(matches!(err, BuildError::Params { .. }), "{bad}: {err}");
+    }
+    assert!(build("grid:res=[4,4,4]").is_ok());
+    assert!(build("grid:lambda=0.01").is_ok());
+}
