@@ -251,3 +251,101 @@ fn bad_parameters_are_typed_errors() {
     assert!(build("grid:res=[4,4,4]").is_ok());
     assert!(build("grid:lambda=0.01").is_ok());
 }
+
+fn accelbench(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the accelbench binary runs")
+}
+
+#[test]
+fn cli_sweep_writes_csv_and_charts_and_trace_takes_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let o = out.to_str().unwrap();
+    let run = accelbench(&[
+        "sweep",
+        "grid",
+        "--scene",
+        "soup:n=2000",
+        "--size",
+        "32",
+        "--res",
+        "2,8",
+        "--lambda",
+        "0.5,4",
+        "--repeats",
+        "1",
+        "--threads",
+        "1",
+        "--out",
+        o,
+    ]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), 5, "{csv}");
+    assert!(rows[0].contains("rays_per_s") && rows[0].contains("prim_tests_per_ray"));
+    assert!(csv.contains("grid:lambda=4") && csv.contains("res = [8, 8, 8]"));
+    for svg in ["rays_per_s.svg", "build_ms.svg"] {
+        let s = std::fs::read_to_string(out.join(svg)).unwrap();
+        assert!(
+            s.contains("<svg") && s.contains("heuristic (lambda=4)"),
+            "{svg}"
+        );
+    }
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("fastest:") && stdout.contains("heuristic:"),
+        "{stdout}"
+    );
+
+    // Bad sweep input: a clear message and a non-zero exit, no panic.
+    for (args, expect) in [
+        (vec!["--res", "0"], "0"),
+        (vec!["--lambda=-2"], "lambda"),
+        (vec!["--lambda", "1,0"], "lambda"),
+        (vec!["--res", "100000"], "65536"),
+        (vec!["--rays", "sideways"], "sideways"),
+    ] {
+        let mut all = vec!["sweep", "grid", "--scene", "soup:n=100", "--out", o];
+        all.extend(args.iter().copied());
+        let r = accelbench(&all);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(
+            !r.status.success() && err.contains(expect),
+            "{all:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+
+    // `trace --index grid:...` on a protocol ray file.
+    let rays = dir.path().join("p.rays");
+    let r = accelbench(&[
+        "rays",
+        "--scene",
+        "icosphere",
+        "--set",
+        "primary",
+        "--size",
+        "16",
+        "--out",
+        rays.to_str().unwrap(),
+    ]);
+    assert!(r.status.success());
+    let t = accelbench(&[
+        "trace",
+        "--scene",
+        "icosphere",
+        "--index",
+        "grid:res=[5,6,7]",
+        "--rays",
+        rays.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&t.stdout);
+    assert!(t.status.success(), "{}", String::from_utf8_lossy(&t.stderr));
+    assert!(stdout.contains("res = [5, 6, 7]") && stdout.contains("rays:             256"));
+}

@@ -3,6 +3,7 @@
 mod gen_obj;
 mod info;
 mod rays;
+mod sweep;
 mod trace;
 
 use clap::{Parser, Subcommand};
@@ -29,6 +30,8 @@ enum Command {
     Trace(trace::TraceArgs),
     /// Write a generator's triangles as an .obj file (by default into meshes/).
     Gen(gen_obj::GenArgs),
+    /// Race one index at many parameter values (`sweep grid`) and write a CSV and charts.
+    Sweep(sweep::SweepArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -39,6 +42,7 @@ pub fn main() -> ExitCode {
         Command::Rays(a) => rays::run(a),
         Command::Trace(a) => trace::run(a),
         Command::Gen(a) => gen_obj::run(a),
+        Command::Sweep(a) => sweep::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,4 +1,5 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
+pub mod sweep;
 pub mod timing;
 pub mod verify;
