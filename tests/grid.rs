@@ -349,3 +349,31 @@ fn cli_sweep_writes_csv_and_charts_and_trace_takes_grid() {
     assert!(t.status.success(), "{}", String::from_utf8_lossy(&t.stderr));
     assert!(stdout.contains("res = [5, 6, 7]") && stdout.contains("rays:             256"));
 }
+
+/// Rays from 5 to 60 scene diagonals away, aimed at edge midpoints and vertices of a scene
+/// centred on the coordinate origin, where the shared overlap pad (relative to a cell's own
+/// coordinates) is smallest. Without the grid's build margin (`Layout::margin`) the stadium
+/// fails here (ties on shared edges at cell boundaries resolved to the wrong triangle).
+#[test]
+fn far_rays_into_a_scene_centred_on_the_origin() {
+    for name in ["stadium", "soup"] {
+        let mut scene = generators::generate(name, 4000, 3).unwrap();
+        let c = scene.bounds().center();
+        for t in &mut scene.triangles {
+            for v in &mut t.v {
+                *v -= c;
+            }
+        }
+        let diag = scene.bounds().extent().length();
+        let mut rays = Vec::new();
+        for t in scene.triangles.iter().step_by(2) {
+            for dist in [5.0f32, 30.0, 60.0] {
+                let mid = Vec3::from((t.v[0] + t.v[1]) * 0.5);
+                let o = Vec3::new(0.3, 0.7, -0.6).normalize() * diag * dist + mid * 0.1;
+                rays.push(Ray::infinite(o, mid - o).unwrap());
+                rays.push(Ray::infinite(o, Vec3::from(t.v[2]) - o).unwrap());
+            }
+        }
+        assert_agrees("grid:lambda=16", &scene, &rays);
+    }
+}
