@@ -24,8 +24,9 @@ pub struct Layout {
     /// primitive is stored in every cell it comes within `margin` of. It absorbs the rounding of
     /// the traversal's crossing distances and of the kernel's `t` (a few ulps of the distance from
     /// the ray origin), which the shared overlap pad (relative to the cell's own coordinates) does
-    /// not cover for cells near the coordinate origin. `MARGIN_REL` of the diagonal covers ray
-    /// origins up to about 60 diagonals from the grid.
+    /// not cover for cells near the coordinate origin. With `MARGIN_REL` of the diagonal that is
+    /// an estimate (a few ulps of the ray's distance) good for ray origins up to some tens of
+    /// diagonals from the grid; `tests/grid.rs` checks rays from 60 diagonals away.
     pub margin: f32,
 }
 
