@@ -285,12 +285,12 @@ fn cli_sweep_writes_csv_and_charts_and_trace_takes_grid() {
     ]);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{stderr}");
-    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(rows.len(), 5, "{csv}");
     assert!(rows[0].contains("rays_per_s") && rows[0].contains("prim_tests_per_ray"));
     assert!(csv.contains("grid:lambda=4") && csv.contains("res = [8, 8, 8]"));
-    for svg in ["rays_per_s.svg", "build_ms.svg"] {
+    for svg in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
         let s = std::fs::read_to_string(out.join(svg)).unwrap();
         assert!(
             s.contains("<svg") && s.contains("heuristic (lambda=4)"),

@@ -42,7 +42,8 @@ pub struct CommonSweepArgs {
     /// Timed repeats per point (the median counts).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=100))]
     repeats: u64,
-    /// Output directory (default: reports/sweeps/<scene>-<index>/).
+    /// Output directory (default: reports/sweeps/<scene>-<index>/); files are named after the
+    /// ray set (`primary.csv`, `primary-rays_per_s.svg`, `primary-build_ms.svg`).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Worker threads (default: all cores).
@@ -198,7 +199,7 @@ fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
             format!("heuristic (lambda={DEFAULT_LAMBDA})"),
         )),
     };
-    let files = write_sweep(&p.out, &rows, &plot)?;
+    let files = write_sweep(&p.out, a.common.rays.name(), &rows, &plot)?;
     summarize(&rows);
     println!("wrote {}", files.csv.display());
     println!("wrote {}", files.rays_chart.display());

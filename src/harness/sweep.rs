@@ -168,17 +168,19 @@ pub struct SweepFiles {
     pub build_chart: PathBuf,
 }
 
-/// Writes `sweep.csv`, `rays_per_s.svg` and `build_ms.svg` (one line per series, the marker on
-/// both) into `dir`.
+/// Writes `<stem>.csv`, `<stem>-rays_per_s.svg` and `<stem>-build_ms.svg` (one line per series,
+/// the marker on both) into `dir`; the stem (e.g. the ray set) lets several sweeps of one scene
+/// share a directory.
 pub fn write_sweep(
     dir: &Path,
+    stem: &str,
     rows: &[SweepRow],
     plot: &SweepPlot,
 ) -> Result<SweepFiles, ReportError> {
     let files = SweepFiles {
-        csv: dir.join("sweep.csv"),
-        rays_chart: dir.join("rays_per_s.svg"),
-        build_chart: dir.join("build_ms.svg"),
+        csv: dir.join(format!("{stem}.csv")),
+        rays_chart: dir.join(format!("{stem}-rays_per_s.svg")),
+        build_chart: dir.join(format!("{stem}-build_ms.svg")),
     };
     write_csv(&files.csv, rows)?;
     let mut names: Vec<&str> = Vec::new();
@@ -265,7 +267,8 @@ mod tests {
             log_x: true,
             marker: Some((4.0, "heuristic".into())),
         };
-        let files = write_sweep(dir.path(), &rows, &plot).unwrap();
+        let files = write_sweep(dir.path(), "primary", &rows, &plot).unwrap();
+        assert!(files.csv.ends_with("primary.csv"));
         let csv = std::fs::read_to_string(&files.csv).unwrap();
         assert!(csv.starts_with("series,index,spec,params,x,cells"));
         assert_eq!(csv.lines().count(), 5);
