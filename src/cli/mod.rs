@@ -7,6 +7,7 @@ mod render;
 mod run;
 mod scale;
 mod suite_args;
+mod sweep;
 mod trace;
 mod verify;
 
@@ -43,6 +44,8 @@ enum Command {
     Gen(gen_obj::GenArgs),
     /// Render a scene through an index as a PNG: Phong shading with shadows, or a cost heat map.
     Render(render::RenderArgs),
+    /// Race one index at many parameter values (`sweep grid`) and write a CSV and charts.
+    Sweep(sweep::SweepArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -57,6 +60,7 @@ pub fn main() -> ExitCode {
         Command::Trace(a) => trace::run(a),
         Command::Gen(a) => gen_obj::run(a),
         Command::Render(a) => render::run(a),
+        Command::Sweep(a) => sweep::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

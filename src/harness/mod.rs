@@ -1,6 +1,7 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
 pub mod suite;
+pub mod sweep;
 pub mod timing;
 pub mod verify;
 pub mod workload;

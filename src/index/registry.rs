@@ -23,10 +23,16 @@ struct Entry {
 }
 
 /// Every index the suite knows, in report order. Adding an index is one line here.
-const REGISTRY: &[Entry] = &[Entry {
-    name: "brute",
-    build: build_dyn::<BruteForce>,
-}];
+const REGISTRY: &[Entry] = &[
+    Entry {
+        name: "brute",
+        build: build_dyn::<BruteForce>,
+    },
+    Entry {
+        name: "grid",
+        build: build_dyn::<super::Grid>,
+    },
+];
 
 /// Names of all registered indices, in report order.
 pub fn index_names() -> Vec<&'static str> {

@@ -1,0 +1,283 @@
+//! Parameter sweeps: build one index per point, time it and count its work on the same rays,
+//! check every point returns the same hits, and write a CSV and charts against the swept value.
+//! Generic over the index: a point is an x value and an [`IndexSpec`] (`grid:res=[64,64,64]`,
+//! `octree:max_depth=12`), grouped into named series (one line per series in the charts).
+
+use super::timing::{Query, counting_pass, timed_pass};
+use super::verify::{Mismatch, compare_closest};
+use crate::geometry::{Ray, TriangleKernelKind};
+use crate::index::{BuildError, Counters, IndexSpec, build_index};
+use crate::report::{Chart, ReportError, Series, line_chart, write_csv};
+use crate::scene::SceneGeometry;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// One point of a sweep.
+#[derive(Debug, Clone)]
+pub struct SweepPoint {
+    /// The line it belongs to (`res`, `lambda`, ...).
+    pub series: String,
+    /// Its position on the x axis (e.g. cells on the longest axis).
+    pub x: f64,
+    pub spec: IndexSpec,
+}
+
+/// One CSV row: what a point cost to build and store, and how fast it traced.
+#[derive(Debug, Clone, Serialize)]
+pub struct SweepRow {
+    pub series: String,
+    pub index: String,
+    /// The spec as given (`grid:lambda=4`).
+    pub spec: String,
+    /// The index's own `key=value` parameters after defaults.
+    pub params: String,
+    pub x: f64,
+    /// Cells (grid) or nodes (trees), leaves included.
+    pub cells: usize,
+    /// Non-empty cells or leaves.
+    pub leaves: usize,
+    pub prim_refs: usize,
+    pub memory_bytes: usize,
+    pub build_ms: f64,
+    pub rays: usize,
+    /// Closest-hit rays per second (median of the timed repeats).
+    pub rays_per_s: f64,
+    pub prim_tests_per_ray: f64,
+    /// Cells (grid) or nodes (trees) visited per ray.
+    pub node_visits_per_ray: f64,
+    /// The index's structure-specific figures, `name=value;...` (e.g. `res_x=80;...`).
+    pub detail: String,
+}
+
+/// Why a sweep could not run.
+#[derive(Debug, Error)]
+pub enum SweepError {
+    #[error("sweep point {spec} (x = {x}): {source}")]
+    Build {
+        spec: String,
+        x: f64,
+        source: BuildError,
+    },
+    #[error(
+        "sweep point {spec} returns different hits from {reference} on {count} rays; first: {first}"
+    )]
+    Disagree {
+        spec: String,
+        reference: String,
+        count: usize,
+        first: Box<Mismatch>,
+    },
+    #[error("a sweep needs at least one point and one ray")]
+    Empty,
+}
+
+/// How the points are measured.
+#[derive(Debug, Clone, Copy)]
+pub struct SweepSetup<'a> {
+    pub geom: &'a SceneGeometry,
+    pub kernel: TriangleKernelKind,
+    pub rays: &'a [Ray],
+    /// Timed repeats per point (the median counts).
+    pub repeats: usize,
+}
+
+/// Runs every point on the current rayon pool (build, timed closest-hit pass, counting pass),
+/// calling `progress` after each, and checks that all points return the first point's hits bit
+/// for bit.
+pub fn run_sweep(
+    setup: &SweepSetup<'_>,
+    points: &[SweepPoint],
+    mut progress: impl FnMut(&SweepRow),
+) -> Result<Vec<SweepRow>, SweepError> {
+    if points.is_empty() || setup.rays.is_empty() {
+        return Err(SweepError::Empty);
+    }
+    let mut reference = None;
+    let mut rows = Vec::with_capacity(points.len());
+    for p in points {
+        let index =
+            build_index(&p.spec, setup.geom, setup.kernel).map_err(|source| SweepError::Build {
+                spec: p.spec.to_string(),
+                x: p.x,
+                source,
+            })?;
+        let (timing, hits) = timed_pass(index.as_ref(), Query::Closest, setup.rays, setup.repeats);
+        let (counters, _) = counting_pass(index.as_ref(), Query::Closest, setup.rays);
+        match &reference {
+            None => reference = Some((p.spec.to_string(), hits)),
+            Some((name, want)) => {
+                let m = compare_closest(setup.rays, want, &hits);
+                if let Some(first) = m.first() {
+                    return Err(SweepError::Disagree {
+                        spec: p.spec.to_string(),
+                        reference: name.clone(),
+                        count: m.len(),
+                        first: Box::new(first.clone()),
+                    });
+                }
+            }
+        }
+        let total: Counters = counters.into_iter().sum();
+        let n = setup.rays.len() as f64;
+        let info = index.info();
+        let row = SweepRow {
+            series: p.series.clone(),
+            index: index.name().to_owned(),
+            spec: p.spec.to_string(),
+            params: index.params().to_owned(),
+            x: p.x,
+            cells: info.nodes,
+            leaves: info.leaves,
+            prim_refs: info.prim_refs,
+            memory_bytes: info.memory_bytes,
+            build_ms: info.build_time.as_secs_f64() * 1e3,
+            rays: setup.rays.len(),
+            rays_per_s: timing.rays_per_sec(setup.rays.len()),
+            prim_tests_per_ray: total.prim_tests as f64 / n,
+            node_visits_per_ray: total.node_visits as f64 / n,
+            detail: info
+                .extra
+                .iter()
+                .map(|(k, v)| format!("{k}={v}"))
+                .collect::<Vec<_>>()
+                .join(";"),
+        };
+        progress(&row);
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// Titles, axis and marker of a sweep's charts.
+#[derive(Debug, Clone, Default)]
+pub struct SweepPlot {
+    /// What was swept, for titles (`grid on stanford_bunny, primary rays`).
+    pub title: String,
+    pub x_label: String,
+    pub log_x: bool,
+    /// The default or heuristic choice `(x, label)`, drawn as a vertical line.
+    pub marker: Option<(f64, String)>,
+}
+
+/// The files a sweep wrote.
+#[derive(Debug, Clone)]
+pub struct SweepFiles {
+    pub csv: PathBuf,
+    pub rays_chart: PathBuf,
+    pub build_chart: PathBuf,
+}
+
+/// Writes `<stem>.csv`, `<stem>-rays_per_s.svg` and `<stem>-build_ms.svg` (one line per series,
+/// the marker on both) into `dir`; the stem (e.g. the ray set) lets several sweeps of one scene
+/// share a directory.
+pub fn write_sweep(
+    dir: &Path,
+    stem: &str,
+    rows: &[SweepRow],
+    plot: &SweepPlot,
+) -> Result<SweepFiles, ReportError> {
+    let files = SweepFiles {
+        csv: dir.join(format!("{stem}.csv")),
+        rays_chart: dir.join(format!("{stem}-rays_per_s.svg")),
+        build_chart: dir.join(format!("{stem}-build_ms.svg")),
+    };
+    write_csv(&files.csv, rows)?;
+    let mut names: Vec<&str> = Vec::new();
+    for r in rows {
+        if !names.contains(&r.series.as_str()) {
+            names.push(&r.series);
+        }
+    }
+    let series = |y: fn(&SweepRow) -> f64| -> Vec<Series> {
+        names
+            .iter()
+            .map(|&name| {
+                let mut pts: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.series == name)
+                    .map(|r| (r.x, y(r)))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                Series::new(name, pts)
+            })
+            .collect()
+    };
+    let chart = |what: &str, y_label: &str, log_y: bool| Chart {
+        title: format!("{}: {what}", plot.title),
+        x_label: plot.x_label.clone(),
+        y_label: y_label.to_owned(),
+        log_x: plot.log_x,
+        log_y,
+        markers: plot.marker.iter().cloned().collect(),
+    };
+    line_chart(
+        &files.rays_chart,
+        &chart("rays/s", "Mrays/s (closest hit)", false),
+        &series(|r| r.rays_per_s / 1e6),
+    )?;
+    line_chart(
+        &files.build_chart,
+        &chart("build time", "build time (ms)", true),
+        &series(|r| r.build_ms),
+    )?;
+    Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::generators;
+
+    #[test]
+    fn sweep_rows_agree_and_files_are_written() {
+        let scene = generators::generate("soup", 500, 1).unwrap();
+        let geom = scene.geometry();
+        let rays = crate::rays::incoherent_rays(&scene.bounds(), 300, 42);
+        let setup = SweepSetup {
+            geom: &geom,
+            kernel: TriangleKernelKind::Watertight,
+            rays: &rays,
+            repeats: 1,
+        };
+        let points: Vec<SweepPoint> = [1u32, 4, 9]
+            .iter()
+            .map(|&r| SweepPoint {
+                series: "res".into(),
+                x: r as f64,
+                spec: format!("grid:res=[{r},{r},{r}]").parse().unwrap(),
+            })
+            .chain(std::iter::once(SweepPoint {
+                series: "brute".into(),
+                x: 1.0,
+                spec: IndexSpec::named("brute"),
+            }))
+            .collect();
+        let mut seen = 0;
+        let rows = run_sweep(&setup, &points, |_| seen += 1).unwrap();
+        assert_eq!((rows.len(), seen), (4, 4));
+        assert_eq!(rows[2].cells, 729);
+        assert_eq!(rows[3].prim_tests_per_ray, 500.0);
+        assert!(rows[2].prim_tests_per_ray < rows[0].prim_tests_per_ray);
+        assert!(rows.iter().all(|r| r.rays == 300 && r.rays_per_s > 0.0));
+        let dir = tempfile::tempdir().unwrap();
+        let plot = SweepPlot {
+            title: "grid on soup".into(),
+            x_label: "cells per axis".into(),
+            log_x: true,
+            marker: Some((4.0, "heuristic".into())),
+        };
+        let files = write_sweep(dir.path(), "primary", &rows, &plot).unwrap();
+        assert!(files.csv.ends_with("primary.csv"));
+        let csv = std::fs::read_to_string(&files.csv).unwrap();
+        assert!(csv.starts_with("series,index,spec,params,x,cells"));
+        assert_eq!(csv.lines().count(), 5);
+        let svg = std::fs::read_to_string(&files.rays_chart).unwrap();
+        assert!(svg.contains("heuristic") && svg.contains("brute"));
+        assert!(files.build_chart.exists());
+        assert!(matches!(
+            run_sweep(&setup, &[], |_| ()),
+            Err(SweepError::Empty)
+        ));
+    }
+}

@@ -1,0 +1,175 @@
+//! The 3D-DDA (Amanatides & Woo 1987): the cells a ray crosses, front to back, each with the
+//! distance at which the ray leaves it.
+//!
+//! # Why "stop once the best hit is at or before the current cell's exit" is exact
+//!
+//! The walk starts at the ray's entry into the grid box (clipped to `t_min`) and steps, one
+//! cell at a time, to the neighbour across the nearest boundary plane. Crossing distances are
+//! computed afresh from the stored planes (`(plane - origin) * inv_dir`), never accumulated, so
+//! each carries a few ulps of relative error, and they are monotone along the walk.
+//!
+//! Suppose the walk stops after cell `C` because `best.t <= exit(C)`, and some primitive `q`
+//! would beat `best` (`t_q < best.t`, or `t_q == best.t` with a lower id). Then `t_q <= exit(C)`,
+//! and `t_q >= entry into the grid box` (the `Geometry` contract clamps `t_q` into the slab
+//! interval of `q`'s bounds, which lie in the grid box, and the slab test is monotone). So the
+//! point the ray reaches at `t_q` lies in the part of the ray the walk has covered: in a visited
+//! cell, or within rounding distance of one (the computed crossing distances, the computed start
+//! point, or a corner cut that the rounded walk stepped around). That point lies on `q` up to the
+//! kernel's own rounding of `t_q`. Every cell box was grown by [`super::layout::Layout::margin`]
+//! before the conservative overlap test, which exceeds both roundings, so `q` is stored in that
+//! visited cell and was tested: `q` cannot beat `best`.
+//!
+//! Ties on a boundary: when `best.t == exit(C)` exactly and `q` (lower id) is hit at the same
+//! `t` in the next cell, its hit point lies on the shared face; cells are closed boxes, so `q`
+//! touches `C` and was tested in `C`. Hence "at or before" (`<=`) is enough, and continuing on
+//! `<` would only cost time.
+//!
+//! Robustness: a direction component of `+0.0` or `-0.0` (or so small that its inverse is
+//! infinite) never steps on that axis (its crossing distance is `+inf`); a ray on a boundary
+//! plane may start in either neighbouring cell (both touch the plane). Each step moves one axis
+//! index monotonically, so a walk visits at most `res_x + res_y + res_z - 2` cells and then ends
+//! (or ends when no axis can step). No NaN enters the crossing distances: they are only
+//! computed for finite inverse directions.
+
+use super::layout::Layout;
+use crate::geometry::Ray;
+
+/// The walk of one ray through a grid: an iterator of `(linear cell index, exit distance)`.
+#[derive(Debug, Clone)]
+pub struct Dda<'a> {
+    layout: &'a Layout,
+    origin: [f32; 3],
+    inv_dir: [f32; 3],
+    cell: [u32; 3],
+    linear: usize,
+    /// `-1`, `0` (never steps on this axis) or `+1`.
+    step: [i32; 3],
+    /// How `linear` changes when stepping on each axis.
+    stride: [isize; 3],
+    /// Distance at which the ray crosses the next boundary plane on each axis (`+inf` when the
+    /// axis does not step).
+    t_next: [f32; 3],
+    done: bool,
+}
+
+impl<'a> Dda<'a> {
+    /// The walk of `ray` over `[ray.t_min, ray.t_max]`, or `None` when it misses the grid box.
+    #[inline]
+    pub fn new(layout: &'a Layout, ray: &Ray) -> Option<Dda<'a>> {
+        let (enter, _) = layout.bounds.ray_interval(ray, ray.t_min, ray.t_max)?;
+        let start = ray.at(enter);
+        let origin = ray.origin.to_array();
+        let inv_dir = ray.inv_dir.to_array();
+        let cell = [0, 1, 2].map(|a| layout.locate(a, start[a]));
+        let res = layout.res;
+        let base = [1isize, res[0] as isize, res[0] as isize * res[1] as isize];
+        let mut step = [0i32; 3];
+        let mut stride = [0isize; 3];
+        let mut t_next = [f32::INFINITY; 3];
+        for a in 0..3 {
+            let inv = inv_dir[a];
+            if !inv.is_finite() {
+                continue;
+            }
+            step[a] = if inv > 0.0 { 1 } else { -1 };
+            stride[a] = base[a] * step[a] as isize;
+            let plane = layout.planes[a][(cell[a] + u32::from(step[a] > 0)) as usize];
+            t_next[a] = (plane - origin[a]) * inv;
+        }
+        Some(Dda {
+            layout,
+            origin,
+            inv_dir,
+            linear: layout.linear(cell),
+            cell,
+            step,
+            stride,
+            t_next,
+            done: false,
+        })
+    }
+}
+
+impl Iterator for Dda<'_> {
+    type Item = (usize, f32);
+
+    #[inline]
+    fn next(&mut self) -> Option<(usize, f32)> {
+        if self.done {
+            return None;
+        }
+        let t = self.t_next;
+        // The nearest crossing; ties (a ray through an edge or corner) to the lowest axis.
+        let a = if t[0] <= t[1] && t[0] <= t[2] {
+            0
+        } else if t[1] <= t[2] {
+            1
+        } else {
+            2
+        };
+        let out = (self.linear, t[a]);
+        let next = self.cell[a] as i64 + self.step[a] as i64;
+        if self.step[a] == 0 || next < 0 || next >= self.layout.res[a] as i64 {
+            self.done = true;
+        } else {
+            self.cell[a] = next as u32;
+            self.linear = self.linear.wrapping_add_signed(self.stride[a]);
+            let plane = self.layout.planes[a][next as usize + usize::from(self.step[a] > 0)];
+            self.t_next[a] = (plane - self.origin[a]) * self.inv_dir[a];
+        }
+        Some(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Aabb;
+    use glam::{Vec3, Vec3A};
+
+    fn layout() -> Layout {
+        Layout::new(Aabb::new(Vec3A::ZERO, Vec3A::splat(4.0)), [4, 4, 4])
+    }
+
+    fn walk(o: [f32; 3], d: [f32; 3]) -> Vec<(usize, f32)> {
+        let l = layout();
+        let r = Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap();
+        Dda::new(&l, &r).map(|w| w.collect()).unwrap_or_default()
+    }
+
+    #[test]
+    fn axis_parallel_walks_with_signed_zeros() {
+        let l = layout();
+        let row: Vec<usize> = (0..4).map(|x| l.linear([x, 1, 2])).collect();
+        for d in [[1.0, 0.0, 0.0], [1.0, -0.0, -0.0]] {
+            let w = walk([-1.0, 1.5, 2.5], d);
+            assert_eq!(w.iter().map(|c| c.0).collect::<Vec<_>>(), row);
+            assert_eq!(
+                w.iter().map(|c| c.1).collect::<Vec<_>>(),
+                [2.0, 3.0, 4.0, 5.0]
+            );
+        }
+        let back = walk([9.0, 1.5, 2.5], [-1.0, 0.0, -0.0]);
+        let mut rev = row.clone();
+        rev.reverse();
+        assert_eq!(back.iter().map(|c| c.0).collect::<Vec<_>>(), rev);
+    }
+
+    #[test]
+    fn diagonal_walk_visits_each_axis_step_and_ends() {
+        // Through the corners of cells: 4 cells per axis, 3 steps per axis, 10 cells in all.
+        let w = walk([-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]);
+        assert_eq!(w.len(), 10);
+        assert!(w.windows(2).all(|p| p[0].1 <= p[1].1));
+        // Starting inside, on a boundary plane, and missing the grid.
+        let inside = walk([2.0, 0.5, 0.5], [1.0, 0.0, 0.0]);
+        assert_eq!(inside.len(), 2);
+        assert!(walk([-1.0, 5.0, 0.5], [1.0, 0.0, 0.0]).is_empty());
+    }
+
+    #[test]
+    fn tiny_direction_components_do_not_step_or_loop() {
+        let w = walk([0.5, 0.5, 0.5], [1e-45, 1e-45, 1e-45]);
+        assert_eq!(w.len(), 1);
+    }
+}

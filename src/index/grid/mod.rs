@@ -1,0 +1,266 @@
+//! Uniform grid with 3D-DDA traversal (Amanatides & Woo 1987).
+//!
+//! - [`resolution`]: cells per axis, from the cube-root heuristic or given explicitly.
+//! - [`layout`]: the boundary planes build and traversal share.
+//! - [`build`]: primitives into the cells they really overlap, in compressed rows.
+//! - [`dda`]: the walk of a ray through the cells, and why its stop condition is exact.
+//!
+//! Each primitive is tested at most once per ray (the shared per-thread mailbox).
+
+mod build;
+pub mod dda;
+mod layout;
+pub mod resolution;
+
+pub use dda::Dda;
+pub use layout::Layout;
+pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution};
+
+use super::mailbox::with_mailbox;
+use super::{BuildError, Index, IndexInfo, Stats};
+use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
+use crate::scene::Geometry;
+use build::{Cells, fill_cells};
+use serde::{Deserialize, Serialize};
+
+/// Grid parameters: either a heuristic density `lambda` or an explicit `res`, not both. With
+/// neither, the heuristic with [`DEFAULT_LAMBDA`].
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridParams {
+    /// Cells per primitive for the cube-root heuristic (`grid:lambda=8`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f32>,
+    /// Cells per axis (`grid:res=[64,64,32]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub res: Option<[u32; 3]>,
+}
+
+impl GridParams {
+    /// The resolution these parameters give for primitives in `bounds`, or why they are invalid.
+    pub fn resolution(&self, bounds: &Aabb, prims: usize) -> Result<[u32; 3], String> {
+        match (self.lambda, self.res) {
+            (Some(_), Some(_)) => Err("give either lambda or res, not both".to_owned()),
+            (_, Some(res)) => resolution::check_resolution(res).map(|()| res),
+            (lambda, None) => {
+                let lambda = lambda.unwrap_or(DEFAULT_LAMBDA);
+                resolution::check_lambda(lambda)?;
+                Ok(heuristic_resolution(bounds.extent(), prims, lambda))
+            }
+        }
+    }
+}
+
+/// A uniform grid over the scene's bounds.
+#[derive(Debug, Clone)]
+pub struct Grid {
+    layout: Layout,
+    cells: Cells,
+    /// Primitives the grid was built over.
+    prim_count: usize,
+}
+
+impl Grid {
+    /// Where the cells are (resolution, planes).
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// The primitives stored in cell `c` (linear index), ascending.
+    pub fn cell_prims(&self, c: usize) -> &[u32] {
+        self.cells.of(c)
+    }
+
+    /// The cells `ray` crosses, front to back, with their exit distances (`None`: misses).
+    pub fn walk(&self, ray: &Ray) -> Option<Dda<'_>> {
+        Dda::new(&self.layout, ray)
+    }
+}
+
+impl Index for Grid {
+    type Params = GridParams;
+
+    fn build<G: Geometry>(geom: &G, params: &GridParams) -> Result<Self, BuildError> {
+        if geom.is_empty() {
+            return Err(BuildError::EmptyScene);
+        }
+        let bad = |message: String| BuildError::Params {
+            index: "grid".to_owned(),
+            message,
+        };
+        let bounds = (0..geom.len() as u32)
+            .map(|p| geom.bounds(p))
+            .fold(Aabb::EMPTY, Aabb::union);
+        if !(bounds.min.is_finite() && bounds.max.is_finite()) {
+            return Err(BuildError::Failed {
+                index: "grid".to_owned(),
+                message: "the scene bounds are not finite (NaN or infinite coordinates)".into(),
+            });
+        }
+        let res = params.resolution(&bounds, geom.len()).map_err(bad)?;
+        let layout = Layout::new(bounds, res);
+        let cells = fill_cells(geom, &layout).map_err(|message| BuildError::Failed {
+            index: "grid".to_owned(),
+            message,
+        })?;
+        Ok(Grid {
+            layout,
+            cells,
+            prim_count: geom.len(),
+        })
+    }
+
+    #[inline]
+    fn closest_hit<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        ray: &Ray,
+        stats: &mut S,
+    ) -> Option<Hit> {
+        stats.box_tests(1);
+        let walk = self.walk(ray)?;
+        with_mailbox(geom.len(), |mb| {
+            let mut best = ClosestHit::new(ray.t_max);
+            for (cell, t_exit) in walk {
+                stats.node_visit();
+                for &prim in self.cells.of(cell) {
+                    if mb.first_visit(prim) {
+                        stats.prim_test();
+                        if let Some(t) = geom.intersect(prim, ray, best.t()) {
+                            best.offer(t, prim);
+                        }
+                    }
+                }
+                // Exact: see the `dda` module.
+                if best.t() <= t_exit {
+                    break;
+                }
+            }
+            best.get()
+        })
+    }
+
+    #[inline]
+    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+        stats.box_tests(1);
+        let Some(walk) = self.walk(ray) else {
+            return false;
+        };
+        with_mailbox(geom.len(), |mb| {
+            for (cell, t_exit) in walk {
+                stats.node_visit();
+                for &prim in self.cells.of(cell) {
+                    if mb.first_visit(prim) {
+                        stats.prim_test();
+                        if geom.intersect(prim, ray, ray.t_max).is_some() {
+                            return true;
+                        }
+                    }
+                }
+                // Past `t_max`: later cells can only hold hits beyond it.
+                if ray.t_max <= t_exit {
+                    break;
+                }
+            }
+            false
+        })
+    }
+
+    fn info(&self) -> IndexInfo {
+        let cells = self.layout.cell_count();
+        let refs = self.cells.prims.len();
+        let filled = self
+            .cells
+            .offsets
+            .windows(2)
+            .filter(|w| w[0] < w[1])
+            .count();
+        let prims = self.prim_count.max(1);
+        let planes: usize = self.layout.planes.iter().map(|p| p.len()).sum();
+        let [rx, ry, rz] = self.layout.res;
+        IndexInfo {
+            nodes: cells,
+            leaves: filled,
+            depth: 1,
+            memory_bytes: 4 * (self.cells.offsets.len() + refs + planes),
+            prim_refs: refs,
+            extra: vec![
+                ("res_x".into(), rx as f64),
+                ("res_y".into(), ry as f64),
+                ("res_z".into(), rz as f64),
+                (
+                    "empty_cell_fraction".into(),
+                    1.0 - filled as f64 / cells as f64,
+                ),
+                ("refs_per_prim".into(), refs as f64 / prims as f64),
+            ],
+            ..IndexInfo::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::triangle::Watertight;
+    use crate::index::{BruteForce, Counters, NoStats};
+    use crate::scene::Triangles;
+    use glam::Vec3;
+
+    fn params(s: &str) -> Result<GridParams, toml::de::Error> {
+        toml::from_str(s)
+    }
+
+    #[test]
+    fn params_parse_and_bad_ones_are_typed_errors() {
+        let b = Aabb::new(glam::Vec3A::ZERO, glam::Vec3A::ONE);
+        assert_eq!(
+            params("res = [4, 5, 6]").unwrap().resolution(&b, 10),
+            Ok([4, 5, 6])
+        );
+        assert_eq!(
+            params("lambda = 8.0").unwrap().resolution(&b, 1000),
+            Ok([20, 20, 20])
+        );
+        assert!(params("res = [4, 5]").is_err());
+        assert!(params("res = [-1, 5, 5]").is_err());
+        assert!(params("cells = 4").is_err());
+        let both = params("lambda = 2.0\nres = [1, 1, 1]").unwrap();
+        assert!(both.resolution(&b, 10).unwrap_err().contains("not both"));
+        let g = Triangles::<Watertight>::new(crate::scene::generators::icosphere(1).into());
+        for p in [
+            "res = [0, 1, 1]",
+            "lambda = -1.0",
+            "res = [65536, 65536, 65536]",
+        ] {
+            let err = Grid::build(&g, &params(p).unwrap()).unwrap_err();
+            assert!(matches!(err, BuildError::Params { .. }), "{p}: {err}");
+        }
+    }
+
+    #[test]
+    fn finds_brute_force_hits_and_reports_its_shape() {
+        let g = Triangles::<Watertight>::new(crate::scene::generators::icosphere(2).into());
+        let grid = Grid::build(&g, &GridParams::default()).unwrap();
+        let brute = BruteForce::build(&g, &Default::default()).unwrap();
+        for i in 0..200 {
+            let a = i as f32 * 0.37;
+            let o = Vec3::new(3.0 * a.cos(), 0.7 * a.sin(), 3.0 * a.sin());
+            let r = Ray::infinite(o, Vec3::new(0.1, 0.05 * a.cos(), 0.0) - o).unwrap();
+            let want = brute.closest_hit(&g, &r, &mut NoStats);
+            let mut c = Counters::default();
+            let got = grid.closest_hit(&g, &r, &mut c);
+            assert_eq!(
+                want.map(|h| (h.t.to_bits(), h.prim)),
+                got.map(|h| (h.t.to_bits(), h.prim))
+            );
+            assert_eq!(grid.any_hit(&g, &r, &mut NoStats), want.is_some());
+            assert!(c.prim_tests <= g.len() as u64);
+        }
+        let info = grid.info();
+        assert_eq!(info.nodes, grid.layout().cell_count());
+        assert!(info.leaves > 0 && info.leaves < info.nodes);
+        assert!(info.prim_refs >= g.len());
+        assert!(info.memory_bytes >= 4 * (info.nodes + 1 + info.prim_refs));
+    }
+}
