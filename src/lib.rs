@@ -5,8 +5,10 @@
 //! - [`camera`] and [`rays`]: the pinhole camera, the protocol's ray sets and ray/hit files.
 //! - [`index`]: the [`index::Index`] trait, brute force (the reference) and the registry.
 //! - [`report`]: CSV tables and SVG charts every command writes through.
+//! - [`accuracy`] and [`stress`]: kernel accuracy, watertightness, the stress suite.
 //! - [`cli`]: the command line (a thin layer over the library).
 
+pub mod accuracy;
 pub mod camera;
 pub mod cli;
 pub mod geometry;

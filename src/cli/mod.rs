@@ -1,5 +1,6 @@
 //! The `accelbench` command line: one file per subcommand, all logic in the library.
 
+mod accuracy;
 mod gen_obj;
 mod info;
 mod rays;
@@ -29,6 +30,8 @@ enum Command {
     Trace(trace::TraceArgs),
     /// Write a generator's triangles as an .obj file (by default into meshes/).
     Gen(gen_obj::GenArgs),
+    /// Kernel time against error, and watertightness far from the origin (reports/accuracy/).
+    Accuracy(accuracy::AccuracyArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -39,6 +42,7 @@ pub fn main() -> ExitCode {
         Command::Rays(a) => rays::run(a),
         Command::Trace(a) => trace::run(a),
         Command::Gen(a) => gen_obj::run(a),
+        Command::Accuracy(a) => accuracy::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

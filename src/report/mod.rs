@@ -5,7 +5,9 @@
 mod chart;
 mod csv_out;
 
-pub use chart::{BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart};
+pub use chart::{
+    BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart, scatter_chart_with_lines,
+};
 pub use csv_out::write_csv;
 
 use std::path::PathBuf;
