@@ -17,3 +17,4 @@ pub mod index;
 pub mod rays;
 pub mod report;
 pub mod scene;
+pub mod stress;

@@ -4,6 +4,7 @@ mod accuracy;
 mod gen_obj;
 mod info;
 mod rays;
+mod stress;
 mod trace;
 
 use clap::{Parser, Subcommand};
@@ -32,6 +33,8 @@ enum Command {
     Gen(gen_obj::GenArgs),
     /// Kernel time against error, and watertightness far from the origin (reports/accuracy/).
     Accuracy(accuracy::AccuracyArgs),
+    /// Corner cases on every index against brute force, bad rays, self-intersection (reports/stress/).
+    Stress(stress::StressArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -43,6 +46,7 @@ pub fn main() -> ExitCode {
         Command::Trace(a) => trace::run(a),
         Command::Gen(a) => gen_obj::run(a),
         Command::Accuracy(a) => accuracy::run(a),
+        Command::Stress(a) => stress::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,167 @@
+//! The stress suite (`accelbench stress`): corner-case scenes and rays run on every registered
+//! index, which must return brute force's hits bit for bit, never panic and always answer; the
+//! boundary checks for bad rays; and the shadow-ray self-intersection study.
+
+pub mod boundary;
+pub mod cases;
+pub mod report;
+pub mod self_intersection;
+
+use crate::geometry::TriangleKernelKind;
+use crate::harness::verify::compare_indices;
+use crate::index::{IndexSpec, build_index, index_names};
+use cases::Case;
+use self_intersection::SpawnRow;
+use serde::Serialize;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Arc;
+use std::sync::mpsc;
+use std::time::Duration;
+
+/// Indices that are peers, not ours (obvhs): their mismatches are reported, and callers decide
+/// whether they fail a run. The one list of such exceptions.
+pub const PEERS: &[&str] = &["obvhs-bvh2", "obvhs-cwbvh"];
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct StressConfig {
+    /// Primitives of the generated scenes.
+    pub prims: usize,
+    /// Rays per case.
+    pub rays: usize,
+    /// Surface points per configuration of the self-intersection study.
+    pub spawn_points: usize,
+    /// An index that gives no answer within this time on one case fails it ("never loop").
+    pub timeout: Duration,
+}
+
+impl StressConfig {
+    pub fn full() -> StressConfig {
+        StressConfig {
+            prims: 5_000,
+            rays: 20_000,
+            spawn_points: 20_000,
+            timeout: Duration::from_secs(300),
+        }
+    }
+
+    pub fn quick() -> StressConfig {
+        StressConfig {
+            prims: 1_000,
+            rays: 2_000,
+            spawn_points: 2_000,
+            timeout: Duration::from_secs(120),
+        }
+    }
+}
+
+/// One case on one index.
+#[derive(Debug, Clone, Serialize)]
+pub struct CaseResult {
+    pub case: String,
+    pub index: String,
+    pub rays: usize,
+    pub mismatches: usize,
+    /// The first mismatch with the ray's bits, or the build error, panic or timeout.
+    pub first_failure: String,
+    pub passed: bool,
+}
+
+/// Everything `accelbench stress` reports.
+#[derive(Debug, Clone)]
+pub struct StressSummary {
+    pub cases: Vec<CaseResult>,
+    pub boundary: Vec<boundary::BoundaryCheck>,
+    pub self_intersection: Vec<SpawnRow>,
+}
+
+impl StressSummary {
+    /// Failed cases of indices not in `tolerated`, and failed boundary checks (as case rows).
+    pub fn failures(&self, tolerated: &[&str]) -> Vec<CaseResult> {
+        let mut out: Vec<CaseResult> = self
+            .cases
+            .iter()
+            .filter(|c| !c.passed && !tolerated.contains(&c.index.as_str()))
+            .cloned()
+            .collect();
+        out.extend(self.boundary.iter().filter_map(|b| {
+            let e = b.outcome.as_ref().err()?;
+            Some(CaseResult {
+                case: b.name.clone(),
+                index: "-".into(),
+                rays: 0,
+                mismatches: 0,
+                first_failure: e.clone(),
+                passed: false,
+            })
+        }));
+        out
+    }
+}
+
+/// Runs one index on one case against brute force in its own thread, with a time limit.
+fn run_one(case: &Arc<Case>, name: &str, timeout: Duration) -> CaseResult {
+    let (tx, rx) = mpsc::channel();
+    let c = Arc::clone(case);
+    let index_name = name.to_owned();
+    std::thread::spawn(move || {
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            let k = TriangleKernelKind::Watertight;
+            let brute = build_index(&IndexSpec::named("brute"), &c.scene, k)?;
+            let index = build_index(&IndexSpec::named(&index_name), &c.scene, k)?;
+            Ok::<_, crate::index::BuildError>(compare_indices(
+                brute.as_ref(),
+                index.as_ref(),
+                &c.rays,
+            ))
+        }));
+        let _ = tx.send(result);
+    });
+    let (mismatches, first_failure) = match rx.recv_timeout(timeout) {
+        Ok(Ok(Ok(m))) => (
+            m.len(),
+            m.first().map(|m| m.to_string()).unwrap_or_default(),
+        ),
+        Ok(Ok(Err(e))) => (0, format!("build failed: {e}")),
+        Ok(Err(panic)) => {
+            let msg = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            (0, format!("panicked: {msg}"))
+        }
+        Err(_) => (
+            0,
+            format!(
+                "no answer within {} s (an endless loop?)",
+                timeout.as_secs()
+            ),
+        ),
+    };
+    CaseResult {
+        case: case.name.to_owned(),
+        index: name.to_owned(),
+        rays: case.rays.len(),
+        mismatches,
+        passed: first_failure.is_empty(),
+        first_failure,
+    }
+}
+
+/// Runs every case on every registered index (brute force too: its any-hit must agree with its
+/// closest hit), the boundary checks and the self-intersection study.
+pub fn run(config: &StressConfig) -> Result<StressSummary, crate::index::BuildError> {
+    let mut results = Vec::new();
+    for case in cases::all_cases(config.prims, config.rays) {
+        let case = Arc::new(case);
+        for name in index_names() {
+            results.push(run_one(&case, name, config.timeout));
+        }
+    }
+    Ok(StressSummary {
+        cases: results,
+        boundary: boundary::run(),
+        self_intersection: self_intersection::run(config.spawn_points)?,
+    })
+}
