@@ -1,7 +1,8 @@
 //! Property test: on random small scenes (triangles, spheres, mixed; with zero-area,
 //! duplicate, opposite-winding and axis-aligned triangles) and random rays (free, axis-parallel
-//! with +0.0/-0.0, aimed exactly at vertices, starting on vertices), every registered index
-//! returns brute force's hits bit for bit.
+//! with +0.0/-0.0, aimed exactly at vertices, starting on vertices)
+//! and intervals (including `t_min == t_max`), with any of the four triangle kernels, every
+//! registered index returns brute force's hits bit for bit.
 //!
 //! The default is 32 cases so CI stays fast; run many more locally with
 //! `PROPTEST_CASES=10000 cargo test --release --test proptest_indices`.
@@ -101,7 +102,16 @@ fn ray_spec() -> impl Strategy<Value = RaySpec> {
     ]
 }
 
-fn make_ray(spec: &RaySpec, verts: &[Vec3A]) -> Option<Ray> {
+/// The ray interval: `[0, inf]`, empty (`t_min == t_max`), or any closed range.
+fn interval() -> impl Strategy<Value = (f32, f32)> {
+    prop_oneof![
+        Just((0.0, f32::INFINITY)),
+        (0.0f32..3.0).prop_map(|t| (t, t)),
+        (0.0f32..3.0, 0.0f32..6.0).prop_map(|(a, b)| (a.min(b), a.max(b))),
+    ]
+}
+
+fn make_ray(spec: &RaySpec, (t_min, t_max): (f32, f32), verts: &[Vec3A]) -> Option<Ray> {
     let vertex = |i: usize| verts.get(i % verts.len().max(1)).copied();
     let (o, d) = match *spec {
         RaySpec::Free(o, d) => (o, d),
@@ -118,7 +128,7 @@ fn make_ray(spec: &RaySpec, verts: &[Vec3A]) -> Option<Ray> {
         }
         RaySpec::FromVertex(i, d) => (vertex(i)?, d),
     };
-    Ray::infinite(Vec3::from(o), Vec3::from(d)).ok()
+    Ray::new(Vec3::from(o), Vec3::from(d), t_min, t_max).ok()
 }
 
 proptest! {
@@ -127,10 +137,15 @@ proptest! {
     #[test]
     fn every_index_matches_brute_force(
         (tris, spheres) in scene(),
-        specs in prop::collection::vec(ray_spec(), 1..64),
+        specs in prop::collection::vec((ray_spec(), interval()), 1..64),
+        kernel in 0usize..4,
     ) {
+        let kernel = TriangleKernelKind::ALL[kernel];
         let verts: Vec<Vec3A> = tris.iter().flat_map(|t| t.v).collect();
-        let rays: Vec<Ray> = specs.iter().filter_map(|s| make_ray(s, &verts)).collect();
+        let rays: Vec<Ray> = specs
+            .iter()
+            .filter_map(|(s, i)| make_ray(s, *i, &verts))
+            .collect();
         let geom = SceneGeometry {
             triangles: Arc::from(tris.as_slice()),
             spheres: Arc::from(spheres.as_slice()),
@@ -139,17 +154,17 @@ proptest! {
             let m = verify_against_brute(
                 &IndexSpec::named(name),
                 &geom,
-                TriangleKernelKind::Watertight,
+                kernel,
                 &rays,
             )
-            .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
+            .map_err(|e| TestCaseError::fail(format!("{name} ({kernel}): {e}")))?;
             if PEERS.contains(&name) {
                 if !m.is_empty() {
                     eprintln!("peer {name}: {} of {} rays mismatch", m.len(), rays.len());
                 }
                 continue;
             }
-            prop_assert!(m.is_empty(), "{name}: {}", m[0]);
+            prop_assert!(m.is_empty(), "{name} ({kernel}): {}", m[0]);
         }
     }
 }

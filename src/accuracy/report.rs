@@ -82,7 +82,7 @@ fn label(k: Kernel, p: Precision) -> String {
 }
 
 /// Log-log scatter: one series per family, points labelled by kernel and precision, and the
-/// Pareto front as a line.
+/// Pareto fronts (triangle kernels, sphere kernels) as lines.
 pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
     let pts = trade_offs(rows);
     let xy: Vec<(f64, f64)> = pts
@@ -103,10 +103,20 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
             }
         })
         .collect();
-    let front = Series::new(
-        "Pareto front",
-        pareto_front(&xy).into_iter().map(|i| xy[i]).collect(),
-    );
+    // Triangle and sphere kernels are measured on different primitives: one front each.
+    let fronts: Vec<Series> = [("triangles", false), ("spheres", true)]
+        .iter()
+        .map(|&(name, spheres)| {
+            let mine: Vec<usize> = (0..pts.len())
+                .filter(|&i| pts[i].kernel.is_sphere() == spheres)
+                .collect();
+            let sub: Vec<(f64, f64)> = mine.iter().map(|&i| xy[i]).collect();
+            Series::new(
+                format!("Pareto front ({name})"),
+                pareto_front(&sub).into_iter().map(|i| sub[i]).collect(),
+            )
+        })
+        .collect();
     let mut chart = Chart::new(
         "Ray-primitive kernels: time against error",
         "ns per primitive test (single thread, best of repeats)",
@@ -114,7 +124,7 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
     );
     chart.log_x = true;
     chart.log_y = true;
-    scatter_chart_with_lines(path, &chart, &series, &[front])
+    scatter_chart_with_lines(path, &chart, &series, &fronts)
 }
 
 /// False-miss (leak) rate of each triangle kernel against the offset, rays aimed at shared

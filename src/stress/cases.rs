@@ -9,11 +9,12 @@ use crate::rays::{SplitMix64, incoherent_rays, primary_rays};
 use crate::scene::{Scene, SceneGeometry, generators};
 use glam::{Vec3, Vec3A};
 
-/// One stress case: a scene and the rays to shoot at it.
+/// One stress case: a scene, the triangle kernel, and the rays to shoot at it.
 #[derive(Debug, Clone)]
 pub struct Case {
     pub name: &'static str,
     pub scene: SceneGeometry,
+    pub kernel: TriangleKernelKind,
     pub rays: Vec<Ray>,
 }
 
@@ -25,7 +26,17 @@ fn case(name: &'static str, s: &Scene, rays: Vec<Ray>) -> Case {
     Case {
         name,
         scene: s.geometry(),
+        kernel: TriangleKernelKind::Watertight,
         rays,
+    }
+}
+
+/// The same case with another triangle kernel (the hit contract holds for every kernel).
+fn with_kernel(c: &Case, name: &'static str, kernel: TriangleKernelKind) -> Case {
+    Case {
+        name,
+        kernel,
+        ..c.clone()
     }
 }
 
@@ -351,6 +362,30 @@ pub fn all_cases(prims: usize, n: usize) -> Vec<Case> {
         "origins-inside-primitives",
         &mixed,
         inside_primitives(&mixed, n),
+    ));
+    // Non-watertight kernels report hits just outside edges: indices must still agree.
+    let named = |n: &str| {
+        cases
+            .iter()
+            .find(|c| c.name == n)
+            .cloned()
+            .expect("defined above")
+    };
+    let (at_edges, cells) = (named("vertices-and-edges"), named("cell-boundaries-soup"));
+    cases.push(with_kernel(
+        &at_edges,
+        "vertices-and-edges-moller-trumbore",
+        TriangleKernelKind::MollerTrumbore,
+    ));
+    cases.push(with_kernel(
+        &at_edges,
+        "vertices-and-edges-plane-edges",
+        TriangleKernelKind::PlaneEdges,
+    ));
+    cases.push(with_kernel(
+        &cells,
+        "cell-boundaries-parametric",
+        TriangleKernelKind::Parametric,
     ));
     cases
 }

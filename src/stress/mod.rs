@@ -7,9 +7,10 @@ pub mod cases;
 pub mod report;
 pub mod self_intersection;
 
-use crate::geometry::TriangleKernelKind;
-use crate::harness::verify::compare_indices;
-use crate::index::{IndexSpec, build_index, index_names};
+use crate::geometry::Hit;
+use crate::harness::verify::{Mismatch, compare_closest};
+use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, index_names};
+use crate::rays::ray_to_record;
 use cases::Case;
 use self_intersection::SpawnRow;
 use serde::Serialize;
@@ -99,21 +100,46 @@ impl StressSummary {
     }
 }
 
-/// Runs one index on one case against brute force in its own thread, with a time limit.
-fn run_one(case: &Arc<Case>, name: &str, timeout: Duration) -> CaseResult {
+/// Compares `index` with brute force's closest hits `expected` on the case's rays: closest hits
+/// bit for bit, and any-hit equal to "brute force found a hit".
+fn check(case: &Case, expected: &[Option<Hit>], index: &dyn TraceIndex) -> Vec<Mismatch> {
+    let mut got = vec![None; case.rays.len()];
+    index.closest_hits(&case.rays, &mut got);
+    let mut out = compare_closest(&case.rays, expected, &got);
+    let mut any = vec![false; case.rays.len()];
+    index.any_hits(&case.rays, &mut any);
+    for (i, (r, (e, a))) in case.rays.iter().zip(expected.iter().zip(&any)).enumerate() {
+        if e.is_some() != *a {
+            out.push(Mismatch {
+                ray_index: i,
+                ray_bits: ray_to_record(r).map(f32::to_bits),
+                query: "any",
+                expected: *e,
+                got: a.then_some(Hit {
+                    t: f32::NAN,
+                    prim: u32::MAX,
+                }),
+            });
+        }
+    }
+    out
+}
+
+/// Runs one index on one case in its own thread, with a time limit.
+fn run_one(
+    case: &Arc<Case>,
+    expected: &Arc<Vec<Option<Hit>>>,
+    name: &str,
+    timeout: Duration,
+) -> CaseResult {
     let (tx, rx) = mpsc::channel();
-    let c = Arc::clone(case);
+    let (c, e) = (Arc::clone(case), Arc::clone(expected));
     let index_name = name.to_owned();
     std::thread::spawn(move || {
         let result = catch_unwind(AssertUnwindSafe(|| {
-            let k = TriangleKernelKind::Watertight;
-            let brute = build_index(&IndexSpec::named("brute"), &c.scene, k)?;
-            let index = build_index(&IndexSpec::named(&index_name), &c.scene, k)?;
-            Ok::<_, crate::index::BuildError>(compare_indices(
-                brute.as_ref(),
-                index.as_ref(),
-                &c.rays,
-            ))
+            let spec = IndexSpec::named(&index_name);
+            let index = build_index(&spec, &c.scene, c.kernel)?;
+            Ok::<_, BuildError>(check(&c, &e, index.as_ref()))
         }));
         let _ = tx.send(result);
     });
@@ -151,12 +177,15 @@ fn run_one(case: &Arc<Case>, name: &str, timeout: Duration) -> CaseResult {
 
 /// Runs every case on every registered index (brute force too: its any-hit must agree with its
 /// closest hit), the boundary checks and the self-intersection study.
-pub fn run(config: &StressConfig) -> Result<StressSummary, crate::index::BuildError> {
+pub fn run(config: &StressConfig) -> Result<StressSummary, BuildError> {
     let mut results = Vec::new();
     for case in cases::all_cases(config.prims, config.rays) {
-        let case = Arc::new(case);
+        let brute = build_index(&IndexSpec::named("brute"), &case.scene, case.kernel)?;
+        let mut expected = vec![None; case.rays.len()];
+        brute.closest_hits(&case.rays, &mut expected);
+        let (case, expected) = (Arc::new(case), Arc::new(expected));
         for name in index_names() {
-            results.push(run_one(&case, name, config.timeout));
+            results.push(run_one(&case, &expected, name, config.timeout));
         }
     }
     Ok(StressSummary {
