@@ -7,10 +7,11 @@ pub mod cases;
 pub mod report;
 pub mod self_intersection;
 
-use crate::geometry::Hit;
+use crate::geometry::{Hit, TriangleKernelKind};
 use crate::harness::verify::{Mismatch, compare_closest};
 use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, index_names};
 use crate::rays::ray_to_record;
+use crate::scene::SceneGeometry;
 use cases::Case;
 use self_intersection::SpawnRow;
 use serde::Serialize;
@@ -125,12 +126,17 @@ fn check(case: &Case, expected: &[Option<Hit>], index: &dyn TraceIndex) -> Vec<M
     out
 }
 
+/// How [`run_one`] builds an index (the registry's [`build_index`], or a test double).
+type Builder =
+    fn(&IndexSpec, &SceneGeometry, TriangleKernelKind) -> Result<Box<dyn TraceIndex>, BuildError>;
+
 /// Runs one index on one case in its own thread, with a time limit.
 fn run_one(
     case: &Arc<Case>,
     expected: &Arc<Vec<Option<Hit>>>,
     name: &str,
     timeout: Duration,
+    build: Builder,
 ) -> CaseResult {
     let (tx, rx) = mpsc::channel();
     let (c, e) = (Arc::clone(case), Arc::clone(expected));
@@ -138,7 +144,7 @@ fn run_one(
     std::thread::spawn(move || {
         let result = catch_unwind(AssertUnwindSafe(|| {
             let spec = IndexSpec::named(&index_name);
-            let index = build_index(&spec, &c.scene, c.kernel)?;
+            let index = build(&spec, &c.scene, c.kernel)?;
             Ok::<_, BuildError>(check(&c, &e, index.as_ref()))
         }));
         let _ = tx.send(result);
@@ -185,7 +191,7 @@ pub fn run(config: &StressConfig) -> Result<StressSummary, BuildError> {
         brute.closest_hits(&case.rays, &mut expected);
         let (case, expected) = (Arc::new(case), Arc::new(expected));
         for name in index_names() {
-            results.push(run_one(&case, &expected, name, config.timeout));
+            results.push(run_one(&case, &expected, name, config.timeout, build_index));
         }
     }
     Ok(StressSummary {
@@ -193,4 +199,103 @@ pub fn run(config: &StressConfig) -> Result<StressSummary, BuildError> {
         boundary: boundary::run(),
         self_intersection: self_intersection::run(config.spawn_points)?,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Ray;
+    use crate::geometry::triangle::Watertight;
+    use crate::index::{BruteForce, Index, IndexInfo, Stats, build_index_on};
+    use crate::scene::{Geometry, Triangles};
+
+    /// A broken index: brute force that never tests the first half of the primitives.
+    struct SkipsHalf(u32);
+
+    #[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+    struct NoParams {}
+
+    impl Index for SkipsHalf {
+        type Params = NoParams;
+        fn build<G: Geometry>(geom: &G, _: &Self::Params) -> Result<Self, BuildError> {
+            Ok(SkipsHalf(geom.len() as u32))
+        }
+        fn closest_hit<G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Option<Hit> {
+            let mut best = crate::geometry::ClosestHit::new(r.t_max);
+            for p in self.0 / 2..self.0 {
+                s.prim_test();
+                if let Some(t) = g.intersect(p, r, best.t()) {
+                    best.offer(t, p);
+                }
+            }
+            best.get()
+        }
+        fn any_hit<G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> bool {
+            self.closest_hit(g, r, s).is_some()
+        }
+        fn info(&self) -> IndexInfo {
+            IndexInfo::default()
+        }
+    }
+
+    fn broken(
+        _: &IndexSpec,
+        g: &SceneGeometry,
+        _: TriangleKernelKind,
+    ) -> Result<Box<dyn TraceIndex>, BuildError> {
+        let geom = Triangles::<Watertight>::new(g.triangles.clone());
+        Ok(Box::new(build_index_on::<SkipsHalf, _>(
+            "skips-half",
+            geom,
+            Default::default(),
+        )?))
+    }
+
+    fn panics(
+        _: &IndexSpec,
+        _: &SceneGeometry,
+        _: TriangleKernelKind,
+    ) -> Result<Box<dyn TraceIndex>, BuildError> {
+        panic!("deliberate")
+    }
+
+    fn hangs(
+        s: &IndexSpec,
+        g: &SceneGeometry,
+        k: TriangleKernelKind,
+    ) -> Result<Box<dyn TraceIndex>, BuildError> {
+        std::thread::sleep(Duration::from_secs(3));
+        build_index(s, g, k)
+    }
+
+    #[test]
+    fn mismatches_panics_and_hangs_are_reported_as_failures() {
+        let case = cases::all_cases(200, 300)
+            .into_iter()
+            .find(|c| c.name == "vertices-and-edges")
+            .unwrap();
+        let brute = build_index_on::<BruteForce, _>(
+            "brute",
+            Triangles::<Watertight>::new(case.scene.triangles.clone()),
+            Default::default(),
+        )
+        .unwrap();
+        let mut expected = vec![None; case.rays.len()];
+        brute.closest_hits(&case.rays, &mut expected);
+        let (case, expected) = (Arc::new(case), Arc::new(expected));
+        let t = Duration::from_secs(60);
+        let ok = run_one(&case, &expected, "brute", t, build_index);
+        assert!(ok.passed, "{ok:?}");
+        let bad = run_one(&case, &expected, "skips-half", t, broken);
+        assert!(!bad.passed && bad.mismatches > 0, "{bad:?}");
+        assert!(
+            bad.first_failure.contains("bits ["),
+            "{}",
+            bad.first_failure
+        );
+        let p = run_one(&case, &expected, "panics", t, panics);
+        assert!(p.first_failure.contains("panicked: deliberate"), "{p:?}");
+        let h = run_one(&case, &expected, "hangs", Duration::from_millis(200), hangs);
+        assert!(h.first_failure.contains("no answer within"), "{h:?}");
+    }
 }
