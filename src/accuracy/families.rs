@@ -20,9 +20,13 @@ pub enum Family {
     /// Origins on a sphere of radius `3R` around the object, aimed at uniform points of a box
     /// `1.2R` around it (about half hit).
     Random,
-    /// Aimed exactly at the `f32` vertices and edge midpoints of the closed mesh, half from
-    /// outside, half from near the centre (triangles only: spheres have no edges).
-    EdgesVertices,
+    /// Aimed exactly at the `f32` vertices and edge midpoints of the closed mesh from outside
+    /// (origins as in `Random`; triangles only: spheres have no edges). A leak shows as a wrong
+    /// (far-side) primitive; a ray touching a silhouette vertex is an exact hit.
+    EdgesOutside,
+    /// The same targets from near the centre (within `0.1R`): every ray must hit; a miss is a
+    /// leak.
+    EdgesInside,
     /// Nearly parallel to the surface: at angles log-uniform in `[1e-6, 1e-1]` rad to a
     /// triangle's plane, or passing a sphere's centre at `r (1 - delta)`, `delta` log-uniform in
     /// `[1e-7, 1e-1]`.
@@ -30,12 +34,23 @@ pub enum Family {
 }
 
 impl Family {
-    pub const ALL: [Family; 3] = [Family::Random, Family::EdgesVertices, Family::Grazing];
+    pub const ALL: [Family; 4] = [
+        Family::Random,
+        Family::EdgesOutside,
+        Family::EdgesInside,
+        Family::Grazing,
+    ];
+
+    /// `true` for the families aimed at mesh vertices and edges (none for spheres).
+    pub fn is_edges(self) -> bool {
+        matches!(self, Family::EdgesOutside | Family::EdgesInside)
+    }
 
     pub fn name(self) -> &'static str {
         match self {
             Family::Random => "random",
-            Family::EdgesVertices => "edges-vertices",
+            Family::EdgesOutside => "edges-outside",
+            Family::EdgesInside => "edges-inside",
             Family::Grazing => "grazing",
         }
     }
@@ -126,7 +141,7 @@ pub fn triangle_rays(
                 let o = outside(&mut rng);
                 aimed(o, place(in_cube(&mut rng) * 1.2, offset))
             }
-            Family::EdgesVertices => {
+            Family::EdgesOutside | Family::EdgesInside => {
                 let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
                 let k = (rng.next_u64() % 6) as usize;
                 // Vertices, or edge midpoints computed in f32 as a renderer would.
@@ -135,7 +150,7 @@ pub fn triangle_rays(
                 } else {
                     (t.v[k - 3] + t.v[(k - 2) % 3]) * 0.5
                 };
-                let o = if i.is_multiple_of(2) {
+                let o = if family == Family::EdgesOutside {
                     outside(&mut rng)
                 } else {
                     place(in_cube(&mut rng) * 0.1, offset)
@@ -166,7 +181,7 @@ pub fn triangle_rays(
     rays
 }
 
-/// Rays of `family` for the spheres (placed at `offset`); `EdgesVertices` gives none.
+/// Rays of `family` for the spheres (placed at `offset`); the edge families give none.
 pub fn sphere_rays(
     family: Family,
     spheres: &[Sphere],
@@ -176,7 +191,7 @@ pub fn sphere_rays(
 ) -> Vec<Ray> {
     let mut rng = SplitMix64::new(seed);
     let mut rays = Vec::with_capacity(n);
-    if family == Family::EdgesVertices {
+    if family.is_edges() {
         return rays;
     }
     for _ in 0..4 * n + 16 {
@@ -215,7 +230,7 @@ mod tests {
             let spheres = spheres_at(offset);
             for f in Family::ALL {
                 assert_eq!(triangle_rays(f, &tris, offset, 50, 1).len(), 50, "{f:?}");
-                let expected = if f == Family::EdgesVertices { 0 } else { 50 };
+                let expected = if f.is_edges() { 0 } else { 50 };
                 assert_eq!(sphere_rays(f, &spheres, offset, 50, 1).len(), expected);
             }
             // The placed mesh is non-degenerate.

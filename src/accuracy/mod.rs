@@ -7,12 +7,16 @@
 //! - [`watertight`]: rays from inside closed meshes far from the origin; misses per kernel and
 //!   per index.
 //! - [`report`]: CSV, plots and the Markdown summary.
+//! - [`kernels`]: the kernels as data and their timing loop; [`metrics`]: scoring against the
+//!   reference.
 //! - [`kernels_f64`]: the `f64` mirrors of the kernels; [`dd`]: double-double arithmetic;
 //!   [`families`]: the scenes and ray families.
 
 pub mod dd;
 pub mod families;
+pub mod kernels;
 pub mod kernels_f64;
+pub mod metrics;
 pub mod reference;
 pub mod report;
 pub mod study;

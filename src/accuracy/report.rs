@@ -127,22 +127,22 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
     scatter_chart_with_lines(path, &chart, &series, &fronts)
 }
 
-/// False-miss (leak) rate of each triangle kernel against the offset, rays aimed at shared
-/// vertices and edges.
+/// False-miss (leak) rate of each triangle kernel against the offset, rays from inside the
+/// closed mesh aimed at its shared vertices and edges.
 pub fn leak_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
     let mut series: Vec<Series> = Vec::new();
     for k in Kernel::ALL.into_iter().filter(|k| !k.is_sphere()) {
         for p in [Precision::F32, Precision::F64] {
             let points = rows
                 .iter()
-                .filter(|r| r.kernel == k && r.precision == p && r.family == Family::EdgesVertices)
+                .filter(|r| r.kernel == k && r.precision == p && r.family == Family::EdgesInside)
                 .map(|r| (r.offset.max(0.1), r.false_miss_rate))
                 .collect();
             series.push(Series::new(label(k, p), points));
         }
     }
     let mut chart = Chart::new(
-        "Leaks through shared edges and vertices",
+        "Leaks through shared edges and vertices (rays from inside)",
         "offset from the origin (0 drawn at 0.1)",
         "false-miss rate",
     );
@@ -197,13 +197,22 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
     }
     s.push_str(
         "\n# Watertightness (rays from inside closed meshes)\n\n\
-         | mesh | offset | kernel | index | rays | misses | miss rate |\n|---|---|---|---|---|---|---|\n",
+         | mesh | offset | kernel | index | rays | misses | miss rate | aimed rays | aimed misses |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
     );
     for l in leaks {
         let _ = writeln!(
             s,
-            "| {} | {:e} | {} | {} | {} | {} | {:.3e} |",
-            l.mesh, l.offset, l.kernel, l.index, l.rays, l.misses, l.miss_rate
+            "| {} | {:e} | {} | {} | {} | {} | {:.3e} | {} | {} |",
+            l.mesh,
+            l.offset,
+            l.kernel,
+            l.index,
+            l.rays,
+            l.misses,
+            l.miss_rate,
+            l.aimed_rays,
+            l.aimed_misses
         );
     }
     s

@@ -50,6 +50,9 @@ pub struct LeakRow {
     pub rays: usize,
     pub misses: usize,
     pub miss_rate: f64,
+    /// Of `rays`, those aimed exactly at a vertex or an edge midpoint, and their misses.
+    pub aimed_rays: usize,
+    pub aimed_misses: usize,
 }
 
 /// A closed mesh and a point well inside it.
@@ -87,7 +90,7 @@ pub fn closed_meshes(offset: f64) -> Vec<ClosedMesh> {
 }
 
 /// Rays from near `mesh.inside` (within `0.05 R`): first aimed exactly at every vertex and edge
-/// midpoint (in `f32`), then uniform directions, `n` in all.
+/// midpoint (in `f32`; `min(n/2, 6 * triangles)` of them), then uniform directions, `n` in all.
 pub fn inside_rays(mesh: &ClosedMesh, offset: f64, n: usize, seed: u64) -> Vec<Ray> {
     let mut rng = SplitMix64::new(seed);
     let r = object_size(offset);
@@ -118,19 +121,19 @@ pub fn inside_rays(mesh: &ClosedMesh, offset: f64, n: usize, seed: u64) -> Vec<R
     rays
 }
 
-/// Rays with no closest hit.
-fn closest_misses(index: &dyn TraceIndex, rays: &[Ray]) -> usize {
+/// Per ray: no closest hit.
+fn closest_misses(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<bool> {
     let mut hits = vec![None; rays.len()];
     index.closest_hits(rays, &mut hits);
-    hits.iter().filter(|h| h.is_none()).count()
+    hits.iter().map(|h| h.is_none()).collect()
 }
 
-/// Rays with no hit at all, by the any-hit query (brute force stops at the first hit, about
+/// Per ray: no hit at all, by the any-hit query (brute force stops at the first hit, about
 /// twice as fast from inside a closed mesh).
-fn any_misses(index: &dyn TraceIndex, rays: &[Ray]) -> usize {
+fn any_misses(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<bool> {
     let mut any = vec![false; rays.len()];
     index.any_hits(rays, &mut any);
-    any.iter().filter(|a| !**a).count()
+    any.iter().map(|a| !a).collect()
 }
 
 /// Runs the watertightness study: one row per mesh, offset, kernel (brute force) and, for the
@@ -144,7 +147,12 @@ pub fn run(config: &WatertightConfig) -> Result<Vec<LeakRow>, BuildError> {
                 triangles: Arc::from(mesh.triangles.as_slice()),
                 spheres: Arc::from(Vec::new()),
             };
-            let mut row = |kernel, index: &dyn TraceIndex, m: usize| {
+            let aimed = rays
+                .len()
+                .min(config.rays / 2)
+                .min(6 * mesh.triangles.len());
+            let mut row = |kernel, index: &dyn TraceIndex, missed: Vec<bool>| {
+                let m = missed.iter().filter(|&&x| x).count();
                 rows.push(LeakRow {
                     mesh: mesh.name.to_owned(),
                     offset,
@@ -153,6 +161,8 @@ pub fn run(config: &WatertightConfig) -> Result<Vec<LeakRow>, BuildError> {
                     rays: rays.len(),
                     misses: m,
                     miss_rate: m as f64 / rays.len().max(1) as f64,
+                    aimed_rays: aimed,
+                    aimed_misses: missed[..aimed].iter().filter(|&&x| x).count(),
                 });
             };
             for &k in &config.kernels {
