@@ -55,8 +55,11 @@ pub fn run(a: AccuracyArgs) -> anyhow::Result<()> {
     let leaking: Vec<_> = leak_rows
         .iter()
         .filter(|l| l.kernel == crate::geometry::TriangleKernelKind::Watertight && l.misses > 0)
+        // Peers' losses are in the table; they do not fail the run.
+        .filter(|l| !crate::stress::PEERS.contains(&l.index.as_str()))
         .collect();
     eprintln!("wrote {}", a.out.display());
+    // The watertight kernel must lose no ray from inside a closed mesh, in any of our indices.
     anyhow::ensure!(
         leaking.is_empty(),
         "the watertight kernel leaked: {}",
