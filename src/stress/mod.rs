@@ -141,11 +141,19 @@ fn run_one(
     let (tx, rx) = mpsc::channel();
     let (c, e) = (Arc::clone(case), Arc::clone(expected));
     let index_name = name.to_owned();
+    // The caller's thread count (`--threads`) carries over to the watchdog thread's own pool.
+    let threads = rayon::current_num_threads();
     std::thread::spawn(move || {
         let result = catch_unwind(AssertUnwindSafe(|| {
             let spec = IndexSpec::named(&index_name);
-            let index = build(&spec, &c.scene, c.kernel)?;
-            Ok::<_, BuildError>(check(&c, &e, index.as_ref()))
+            let run = || {
+                let index = build(&spec, &c.scene, c.kernel)?;
+                Ok::<_, BuildError>(check(&c, &e, index.as_ref()))
+            };
+            match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+                Ok(pool) => pool.install(run),
+                Err(_) => run(),
+            }
         }));
         let _ = tx.send(result);
     });
