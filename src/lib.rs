@@ -6,8 +6,10 @@
 //! - [`index`]: the [`index::Index`] trait, brute force (the reference) and the registry.
 //! - [`render`]: Phong renders with shadows and per-pixel cost heat maps through any index.
 //! - [`report`]: CSV tables and SVG charts every command writes through.
+//! - [`accuracy`] and [`stress`]: kernel accuracy, watertightness, the stress suite.
 //! - [`cli`]: the command line (a thin layer over the library).
 
+pub mod accuracy;
 pub mod camera;
 pub mod cli;
 pub mod geometry;
@@ -17,3 +19,4 @@ pub mod rays;
 pub mod render;
 pub mod report;
 pub mod scene;
+pub mod stress;

@@ -1,11 +1,13 @@
 //! The `accelbench` command line: one file per subcommand, all logic in the library.
 
+mod accuracy;
 mod gen_obj;
 mod info;
 mod rays;
 mod render;
 mod run;
 mod scale;
+mod stress;
 mod suite_args;
 mod sweep;
 mod trace;
@@ -46,6 +48,10 @@ enum Command {
     Render(render::RenderArgs),
     /// Race one index at many parameter values (`sweep grid`) and write a CSV and charts.
     Sweep(sweep::SweepArgs),
+    /// Kernel time against error, and watertightness far from the origin (reports/accuracy/).
+    Accuracy(accuracy::AccuracyArgs),
+    /// Corner cases on every index against brute force, bad rays, self-intersection (reports/stress/).
+    Stress(stress::StressArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -61,6 +67,8 @@ pub fn main() -> ExitCode {
         Command::Gen(a) => gen_obj::run(a),
         Command::Render(a) => render::run(a),
         Command::Sweep(a) => sweep::run(a),
+        Command::Accuracy(a) => accuracy::run(a),
+        Command::Stress(a) => stress::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

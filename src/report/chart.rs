@@ -156,15 +156,32 @@ fn drawable(chart: &Chart, series: &[Series]) -> Vec<Vec<(f64, f64, usize)>> {
 
 /// Lines with point markers, one per series, plus the chart's vertical markers.
 pub fn line_chart(path: &Path, chart: &Chart, series: &[Series]) -> Result<(), ReportError> {
-    xy_chart(path, chart, series, true)
+    xy_chart(path, chart, series, 0)
 }
 
 /// Points only, each labelled with its series' `labels` when given.
 pub fn scatter_chart(path: &Path, chart: &Chart, series: &[Series]) -> Result<(), ReportError> {
-    xy_chart(path, chart, series, false)
+    xy_chart(path, chart, series, series.len())
 }
 
-fn xy_chart(path: &Path, chart: &Chart, series: &[Series], lines: bool) -> Result<(), ReportError> {
+/// A scatter chart of `points` with `lines` drawn over it as lines (e.g. a Pareto front).
+pub fn scatter_chart_with_lines(
+    path: &Path,
+    chart: &Chart,
+    points: &[Series],
+    lines: &[Series],
+) -> Result<(), ReportError> {
+    let all: Vec<Series> = points.iter().chain(lines).cloned().collect();
+    xy_chart(path, chart, &all, points.len())
+}
+
+/// Series `first_line..` are drawn as lines with markers, the ones before as points.
+fn xy_chart(
+    path: &Path,
+    chart: &Chart,
+    series: &[Series],
+    first_line: usize,
+) -> Result<(), ReportError> {
     let pts = drawable(chart, series);
     let all = || pts.iter().flatten();
     if all().next().is_none() {
@@ -220,7 +237,7 @@ fn xy_chart(path: &Path, chart: &Chart, series: &[Series], lines: bool) -> Resul
     for (i, (s, p)) in series.iter().zip(&pts).enumerate() {
         let col = color(i);
         let xy: Vec<(f64, f64)> = p.iter().map(|&(x, y, _)| (x, y)).collect();
-        let anno = if lines {
+        let anno = if i >= first_line {
             c.draw_series(LineSeries::new(xy.clone(), col.stroke_width(2)))
                 .map_err(e)?;
             c.draw_series(xy.iter().map(|&q| Circle::new(q, 3, col.filled())))
@@ -357,7 +374,13 @@ mod tests {
         assert!(svg.contains("<svg") && svg.contains("heuristic"));
         let mut labelled = s[0].clone();
         labelled.labels = vec!["p".into(), "q".into(), "r".into()];
-        scatter_chart(&dir.path().join("s.svg"), &chart, &[labelled]).unwrap();
+        scatter_chart(&dir.path().join("s.svg"), &chart, &[labelled.clone()]).unwrap();
+        scatter_chart_with_lines(&dir.path().join("f.svg"), &chart, &[labelled], &s).unwrap();
+        let svg = std::fs::read_to_string(dir.path().join("f.svg")).unwrap();
+        assert!(
+            svg.contains("<polyline") || svg.contains("<path"),
+            "a line is drawn"
+        );
         let groups = [
             BarGroup {
                 name: "scene1".into(),

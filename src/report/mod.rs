@@ -7,7 +7,9 @@ mod csv_out;
 pub mod scale_report;
 pub mod suite_report;
 
-pub use chart::{BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart};
+pub use chart::{
+    BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart, scatter_chart_with_lines,
+};
 pub use csv_out::write_csv;
 
 use std::path::PathBuf;

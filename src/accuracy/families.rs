@@ -1,0 +1,241 @@
+//! The scenes and ray families of the accuracy study: a closed icosphere mesh and a handful of
+//! spheres, placed at a translation `offset` from the origin, and rays that are random, aimed
+//! exactly at shared vertices and edges, or grazing.
+//!
+//! Placement: the objects have size `R = max(1, offset * 1e-4)` (scene units), so that at the
+//! far offsets the object still spans at least `1e3` ulps of its coordinates and remains a
+//! closed, non-degenerate shape. Everything is computed in `f64` and rounded to `f32` once, as a
+//! scene file would be.
+
+use crate::geometry::{Ray, Sphere, Triangle};
+use crate::rays::SplitMix64;
+use crate::scene::generators::icosphere_mesh;
+use glam::{DVec3, Vec3, Vec3A};
+use serde::Serialize;
+
+/// A family of rays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    /// Origins on a sphere of radius `3R` around the object, aimed at uniform points of a box
+    /// `1.2R` around it (about half hit).
+    Random,
+    /// Aimed exactly at the `f32` vertices and edge midpoints of the closed mesh from outside
+    /// (origins as in `Random`; triangles only: spheres have no edges). A leak shows as a wrong
+    /// (far-side) primitive; a ray touching a silhouette vertex is an exact hit.
+    EdgesOutside,
+    /// The same targets from near the centre (within `0.1R`): every ray must hit; a miss is a
+    /// leak.
+    EdgesInside,
+    /// Nearly parallel to the surface: at angles log-uniform in `[1e-6, 1e-1]` rad to a
+    /// triangle's plane, or passing a sphere's centre at `r (1 - delta)`, `delta` log-uniform in
+    /// `[1e-7, 1e-1]`.
+    Grazing,
+}
+
+impl Family {
+    pub const ALL: [Family; 4] = [
+        Family::Random,
+        Family::EdgesOutside,
+        Family::EdgesInside,
+        Family::Grazing,
+    ];
+
+    /// `true` for the families aimed at mesh vertices and edges (none for spheres).
+    pub fn is_edges(self) -> bool {
+        matches!(self, Family::EdgesOutside | Family::EdgesInside)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Random => "random",
+            Family::EdgesOutside => "edges-outside",
+            Family::EdgesInside => "edges-inside",
+            Family::Grazing => "grazing",
+        }
+    }
+}
+
+/// The object size at a translation (see the module doc).
+pub fn object_size(offset: f64) -> f64 {
+    (offset * 1e-4).max(1.0)
+}
+
+fn to_f32(p: DVec3) -> Vec3A {
+    Vec3A::from(p.as_vec3())
+}
+
+fn f64v(p: Vec3A) -> DVec3 {
+    Vec3::from(p).as_dvec3()
+}
+
+/// The point `(offset, offset, offset) + R * p`, rounded to `f32`.
+fn place(p: DVec3, offset: f64) -> Vec3A {
+    to_f32(DVec3::splat(offset) + p * object_size(offset))
+}
+
+/// The closed unit icosphere of `level` scaled by `R` and translated by `offset` on every axis.
+/// Shared vertices stay bit-identical, so the mesh stays closed.
+pub fn icosphere_at(level: u32, offset: f64) -> Vec<Triangle> {
+    let (v, f) = icosphere_mesh(level);
+    let placed: Vec<Vec3A> = v.iter().map(|&p| place(f64v(p), offset)).collect();
+    f.iter()
+        .map(|&[a, b, c]| Triangle::new(placed[a as usize], placed[b as usize], placed[c as usize]))
+        .collect()
+}
+
+/// Nine spheres: radius `0.3R` at the corners `(+-0.5R)^3` and `0.15R` at the centre.
+pub fn spheres_at(offset: f64) -> Vec<Sphere> {
+    let r = object_size(offset);
+    let mut s: Vec<Sphere> = (0..8)
+        .map(|i| {
+            let c = DVec3::new(
+                if i & 1 == 0 { -0.5 } else { 0.5 },
+                if i & 2 == 0 { -0.5 } else { 0.5 },
+                if i & 4 == 0 { -0.5 } else { 0.5 },
+            );
+            Sphere::new(place(c, offset), (0.3 * r) as f32)
+        })
+        .collect();
+    s.push(Sphere::new(place(DVec3::ZERO, offset), (0.15 * r) as f32));
+    s
+}
+
+fn unit(rng: &mut SplitMix64) -> DVec3 {
+    let w = 1.0 - 2.0 * rng.next_unit();
+    let phi = std::f64::consts::TAU * rng.next_unit();
+    let s = (1.0 - w * w).max(0.0).sqrt();
+    DVec3::new(s * phi.cos(), s * phi.sin(), w)
+}
+
+fn in_cube(rng: &mut SplitMix64) -> DVec3 {
+    DVec3::new(rng.next_unit(), rng.next_unit(), rng.next_unit()) * 2.0 - 1.0
+}
+
+fn log_uniform(rng: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+    (lo.ln() + rng.next_unit() * (hi.ln() - lo.ln())).exp()
+}
+
+/// A ray from `o` towards `target` (both already `f32`), direction rounded from `f64`.
+fn aimed(o: Vec3A, target: Vec3A) -> Option<Ray> {
+    let d = f64v(target) - f64v(o);
+    Ray::infinite(Vec3::from(o), d.as_vec3()).ok()
+}
+
+/// Rays of `family` for the triangle mesh `tris` (placed at `offset`).
+pub fn triangle_rays(
+    family: Family,
+    tris: &[Triangle],
+    offset: f64,
+    n: usize,
+    seed: u64,
+) -> Vec<Ray> {
+    let mut rng = SplitMix64::new(seed);
+    let outside = |rng: &mut SplitMix64| place(unit(rng) * 3.0, offset);
+    let mut rays = Vec::with_capacity(n);
+    let mut i = 0usize;
+    while rays.len() < n && i < 4 * n + 16 {
+        i += 1;
+        let ray = match family {
+            Family::Random => {
+                let o = outside(&mut rng);
+                aimed(o, place(in_cube(&mut rng) * 1.2, offset))
+            }
+            Family::EdgesOutside | Family::EdgesInside => {
+                let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+                let k = (rng.next_u64() % 6) as usize;
+                // Vertices, or edge midpoints computed in f32 as a renderer would.
+                let target = if k < 3 {
+                    t.v[k]
+                } else {
+                    (t.v[k - 3] + t.v[(k - 2) % 3]) * 0.5
+                };
+                let o = if family == Family::EdgesOutside {
+                    outside(&mut rng)
+                } else {
+                    place(in_cube(&mut rng) * 0.1, offset)
+                };
+                aimed(o, target)
+            }
+            Family::Grazing => {
+                let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+                let v = t.v.map(f64v);
+                let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+                let (b1, b2) = (rng.next_unit(), rng.next_unit());
+                let (b1, b2) = if b1 + b2 > 1.0 {
+                    (1.0 - b1, 1.0 - b2)
+                } else {
+                    (b1, b2)
+                };
+                let q = v[0] + (v[1] - v[0]) * b1 + (v[2] - v[0]) * b2;
+                let tangent = n.cross(unit(&mut rng)).normalize_or_zero();
+                let angle = log_uniform(&mut rng, 1e-6, 1e-1);
+                let sign = if rng.next_unit() < 0.5 { -1.0 } else { 1.0 };
+                let d = tangent * angle.cos() + n * (sign * angle.sin());
+                let o = q - d * (2.0 * object_size(offset));
+                Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
+            }
+        };
+        rays.extend(ray);
+    }
+    rays
+}
+
+/// Rays of `family` for the spheres (placed at `offset`); the edge families give none.
+pub fn sphere_rays(
+    family: Family,
+    spheres: &[Sphere],
+    offset: f64,
+    n: usize,
+    seed: u64,
+) -> Vec<Ray> {
+    let mut rng = SplitMix64::new(seed);
+    let mut rays = Vec::with_capacity(n);
+    if family.is_edges() {
+        return rays;
+    }
+    for _ in 0..4 * n + 16 {
+        if rays.len() >= n {
+            break;
+        }
+        let ray = match family {
+            Family::Random => {
+                let o = place(unit(&mut rng) * 3.0, offset);
+                aimed(o, place(in_cube(&mut rng) * 1.2, offset))
+            }
+            _ => {
+                let s = &spheres[(rng.next_u64() % spheres.len() as u64) as usize];
+                let c = f64v(s.center);
+                let r = s.radius as f64;
+                let d = unit(&mut rng);
+                let side = d.cross(unit(&mut rng)).normalize_or_zero();
+                let b = r * (1.0 - log_uniform(&mut rng, 1e-7, 1e-1));
+                let o = c + side * b - d * (3.0 * r);
+                Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
+            }
+        };
+        rays.extend(ray);
+    }
+    rays
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn families_give_the_requested_rays_at_every_offset() {
+        for offset in [0.0, 1e3, 1e7] {
+            let tris = icosphere_at(1, offset);
+            let spheres = spheres_at(offset);
+            for f in Family::ALL {
+                assert_eq!(triangle_rays(f, &tris, offset, 50, 1).len(), 50, "{f:?}");
+                let expected = if f.is_edges() { 0 } else { 50 };
+                assert_eq!(sphere_rays(f, &spheres, offset, 50, 1).len(), expected);
+            }
+            // The placed mesh is non-degenerate.
+            assert!(tris.iter().all(|t| !t.is_degenerate()), "offset {offset}");
+        }
+        assert_eq!(object_size(1e7), 1e3);
+    }
+}

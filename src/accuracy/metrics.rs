@@ -1,0 +1,153 @@
+//! Scoring a kernel against the exact reference: the reference closest hit of a ray, and the
+//! tallies behind the false-miss, false-hit and wrong-primitive rates and the `t` errors.
+
+use super::kernels::Prims;
+use super::reference::Reference;
+use crate::geometry::Ray;
+
+/// The reference closest hit of a ray over all primitives.
+#[derive(Debug, Clone, Copy)]
+pub enum RefClosest {
+    Hit { t: f64, prim: usize },
+    Miss,
+    Unverifiable,
+}
+
+pub fn reference_closest(prims: &Prims, spheres: &[(glam::DVec3, f64)], ray: &Ray) -> RefClosest {
+    let o = glam::Vec3::from(ray.origin).as_dvec3();
+    let d = glam::Vec3::from(ray.dir).as_dvec3();
+    let dn = d / d.length();
+    let mut best: Option<(f64, usize)> = None;
+    for (i, &(c, r)) in spheres.iter().enumerate() {
+        // Conservative cull: the line passes farther than the bounding radius (with slack for
+        // the f64 rounding of this test).
+        let oc = c - o;
+        let dist = oc.cross(dn).length();
+        if dist > r * (1.0 + 1e-9) + 1e-9 * oc.length() {
+            continue;
+        }
+        match prims.reference(i, ray) {
+            Reference::Unverifiable => return RefClosest::Unverifiable,
+            Reference::Miss => {}
+            Reference::Hit(t) => {
+                if best.is_none_or(|(bt, _)| t < bt) {
+                    best = Some((t, i));
+                }
+            }
+        }
+    }
+    match best {
+        Some((t, prim)) => RefClosest::Hit { t, prim },
+        None => RefClosest::Miss,
+    }
+}
+
+/// Counts of one kernel variant on one batch.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Tally {
+    pub rays: usize,
+    pub unverifiable: usize,
+    pub ref_hits: usize,
+    pub ref_misses: usize,
+    pub false_misses: usize,
+    pub false_hits: usize,
+    pub wrong: usize,
+    pub err_sum: f64,
+    pub err_max: f64,
+    pub err_n: usize,
+}
+
+impl Tally {
+    pub fn merge(mut self, o: Tally) -> Tally {
+        self.rays += o.rays;
+        self.unverifiable += o.unverifiable;
+        self.ref_hits += o.ref_hits;
+        self.ref_misses += o.ref_misses;
+        self.false_misses += o.false_misses;
+        self.false_hits += o.false_hits;
+        self.wrong += o.wrong;
+        self.err_sum += o.err_sum;
+        self.err_max = self.err_max.max(o.err_max);
+        self.err_n += o.err_n;
+        self
+    }
+
+    /// Scores one kernel answer against the reference.
+    pub fn score(&mut self, prims: &Prims, ray: &Ray, r: RefClosest, got: Option<(usize, f64)>) {
+        self.rays += 1;
+        match (r, got) {
+            (RefClosest::Unverifiable, _) => self.unverifiable += 1,
+            (RefClosest::Miss, None) => self.ref_misses += 1,
+            (RefClosest::Miss, Some(_)) => {
+                self.ref_misses += 1;
+                self.false_hits += 1;
+            }
+            (RefClosest::Hit { .. }, None) => {
+                self.ref_hits += 1;
+                self.false_misses += 1;
+            }
+            (RefClosest::Hit { t, prim }, Some((p, tk))) => {
+                self.ref_hits += 1;
+                // Another primitive is right only when the reference has it tied at `t`.
+                let tied = p == prim
+                    || matches!(prims.reference(p, ray),
+                        Reference::Hit(tp) if (tp - t).abs() <= 1e-12 * t.abs());
+                if !tied {
+                    self.wrong += 1;
+                    return;
+                }
+                let err = if t != 0.0 {
+                    (tk - t).abs() / t.abs()
+                } else {
+                    tk.abs()
+                };
+                self.err_sum += err;
+                self.err_max = self.err_max.max(err);
+                self.err_n += 1;
+            }
+        }
+    }
+}
+
+pub fn rate(n: usize, of: usize) -> f64 {
+    if of == 0 { 0.0 } else { n as f64 / of as f64 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Triangle;
+    use glam::{Vec3, Vec3A};
+
+    #[test]
+    fn scores_misses_hits_wrong_primitives_and_errors() {
+        // Two parallel triangles at z = 2 and z = 3 over the same square corner.
+        let tri = |z: f32| {
+            Triangle::new(
+                Vec3A::new(0.0, 0.0, z),
+                Vec3A::new(4.0, 0.0, z),
+                Vec3A::new(0.0, 4.0, z),
+            )
+        };
+        let prims = Prims::Tris(vec![tri(2.0), tri(3.0)]);
+        let spheres: Vec<_> = (0..2).map(|i| prims.bounding_sphere(i)).collect();
+        let ray = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), Vec3::Z).unwrap();
+        let r = reference_closest(&prims, &spheres, &ray);
+        assert!(matches!(r, RefClosest::Hit { prim: 0, t } if t == 2.0));
+        let mut tally = Tally::default();
+        tally.score(&prims, &ray, r, None);
+        tally.score(&prims, &ray, r, Some((1, 3.0)));
+        tally.score(&prims, &ray, r, Some((0, 2.0 * (1.0 + 1e-6))));
+        let away = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), -Vec3::Z).unwrap();
+        let miss = reference_closest(&prims, &spheres, &away);
+        tally.score(&prims, &away, miss, Some((0, 1.0)));
+        assert_eq!((tally.rays, tally.ref_hits, tally.ref_misses), (4, 3, 1));
+        assert_eq!(
+            (tally.false_misses, tally.wrong, tally.false_hits),
+            (1, 1, 1)
+        );
+        assert!((tally.err_max - 1e-6).abs() < 1e-12);
+        assert_eq!(rate(1, 4), 0.25);
+        assert_eq!(rate(1, 0), 0.0);
+    }
+}

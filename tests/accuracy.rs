@@ -1,0 +1,94 @@
+//! The time-against-error study in a small configuration, and the `accuracy` command.
+
+use accelbench::accuracy::families::Family;
+use accelbench::accuracy::{self, AccuracyConfig, Kernel, Precision};
+use std::process::Command;
+
+#[test]
+fn small_study_measures_every_kernel_against_the_exact_reference() {
+    let config = AccuracyConfig::quick(300);
+    let rows = accuracy::run(&config);
+    // 4 triangle kernels x 2 precisions x 4 families + 2 sphere kernels x 2 x 2, per offset.
+    assert_eq!(rows.len(), (32 + 8) * config.offsets.len());
+    for r in &rows {
+        assert_eq!(r.unverifiable, 0, "{r:?}");
+        assert!(r.reference_hits > 0, "{r:?}");
+        assert!(r.ns_per_test > 0.0, "{r:?}");
+    }
+    // f64 kernels are far more accurate than f32 ones away from grazing angles.
+    for r in rows.iter().filter(|r| r.family == Family::Random) {
+        let limit = match r.precision {
+            Precision::F32 => 1e-3,
+            Precision::F64 => 1e-10,
+        };
+        assert!(r.max_rel_t_error < limit, "{r:?}");
+    }
+    let f32_err: f64 = rows
+        .iter()
+        .filter(|r| r.precision == Precision::F32)
+        .map(|r| r.max_rel_t_error)
+        .fold(0.0, f64::max);
+    assert!(f32_err > 1e-8, "f32 kernels show rounding error: {f32_err}");
+    // Rays aimed exactly at shared edges make the non-watertight kernels disagree with the
+    // exact reference somewhere.
+    let edge_trouble: usize = rows
+        .iter()
+        .filter(|r| r.family.is_edges() && r.precision == Precision::F32)
+        .filter(|r| r.kernel != Kernel::Watertight)
+        .map(|r| r.false_misses + r.wrong_primitives)
+        .sum();
+    assert!(edge_trouble > 0);
+    // From inside the closed mesh the watertight kernel never leaks, in f32 and f64.
+    for r in rows
+        .iter()
+        .filter(|r| r.family == Family::EdgesInside && r.kernel == Kernel::Watertight)
+    {
+        assert_eq!(r.false_misses, 0, "{r:?}");
+    }
+
+    let dir = tempfile::tempdir().unwrap();
+    accuracy::write_all(dir.path(), &rows, &[]).unwrap();
+    let svg = std::fs::read_to_string(dir.path().join("time_vs_error.svg")).unwrap();
+    assert!(svg.contains("Pareto front"));
+}
+
+#[test]
+fn accuracy_command_writes_csv_and_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args([
+            "accuracy",
+            "--quick",
+            "--rays",
+            "200",
+            "--leak-rays",
+            "2000",
+            "--threads",
+            "2",
+            "--out",
+        ])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "accuracy failed:\n{stderr}");
+    for f in [
+        "accuracy.csv",
+        "watertight.csv",
+        "time_vs_error.svg",
+        "leaks_vs_offset.svg",
+        "accuracy.md",
+    ] {
+        assert!(dir.path().join(f).exists(), "{f} missing");
+    }
+    let svg = std::fs::read_to_string(dir.path().join("time_vs_error.svg")).unwrap();
+    assert!(svg.contains("Pareto front") && svg.contains("watertight f32"));
+    let csv = std::fs::read_to_string(dir.path().join("accuracy.csv")).unwrap();
+    assert!(csv.starts_with("kernel,precision,family,offset"), "{csv}");
+    let bad = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(["accuracy", "--rays", "0"])
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--rays"));
+}
