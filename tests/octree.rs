@@ -7,6 +7,7 @@ mod common;
 
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};
+use accelbench::harness::verify::verify_against_brute;
 use accelbench::index::octree::OctreeTree;
 use accelbench::index::{
     BuildError, Counters, IndexSpec, NeighborOctree, build_index, build_index_on, parse_params,
@@ -295,4 +296,60 @@ fn bad_parameters_and_scenes_are_typed_errors() {
     let e = build_err("octree-topdown", &inf);
     assert!(matches!(e, BuildError::Failed { .. }), "{e:?}");
     assert!(e.to_string().contains("not finite"), "{e}");
+}
+
+#[test]
+fn agrees_for_every_triangle_kernel() {
+    for name in ["icosphere", "stadium", "slivers", "mixed"] {
+        let scene = generators::generate(name, 1500, 4).unwrap();
+        let rays = common::agreement_rays(&scene, 300);
+        for kernel in TriangleKernelKind::ALL {
+            for spec in SPECS {
+                let m =
+                    verify_against_brute(&spec.parse().unwrap(), &scene.geometry(), kernel, &rays)
+                        .unwrap();
+                assert!(m.is_empty(), "{spec} {kernel} on {name}: {}", m[0]);
+            }
+        }
+    }
+}
+
+/// Rays clipped around brute force's hit: `t_max` exactly at the hit (kept), one ulp before
+/// it, `t_min` exactly at it, and one ulp after it (starting inside the octree, possibly on a
+/// cell face).
+#[test]
+fn ray_intervals_ending_and_starting_at_the_hit_agree() {
+    let next_up = |t: f32| f32::from_bits(t.to_bits() + 1);
+    let next_down = |t: f32| f32::from_bits(t.to_bits() - 1);
+    for name in ["icosphere", "room", "mixed"] {
+        let scene = generators::generate(name, 1500, 6).unwrap();
+        let brute = build_index(
+            &IndexSpec::named("brute"),
+            &scene.geometry(),
+            TriangleKernelKind::Watertight,
+        )
+        .unwrap();
+        let base = common::agreement_rays(&scene, 300);
+        let mut hits = vec![None; base.len()];
+        brute.closest_hits(&base, &mut hits);
+        let mut rays = Vec::new();
+        for (r, h) in base.iter().zip(&hits) {
+            let Some(h) = h else { continue };
+            if h.t <= 0.0 {
+                continue;
+            }
+            for (lo, hi) in [
+                (0.0, h.t),
+                (0.0, next_down(h.t)),
+                (h.t, f32::INFINITY),
+                (next_up(h.t), f32::INFINITY),
+                (0.5 * h.t, 2.0 * h.t),
+            ] {
+                rays.push(r.with_interval(lo, hi).unwrap());
+            }
+        }
+        for spec in SPECS {
+            common::assert_agrees(spec, &scene, &rays);
+        }
+    }
 }
