@@ -223,9 +223,49 @@ impl OctreeTree {
         let all: Vec<u32> = (0..n).collect();
         b.build(0, &all, 0, [NO_ROPE; 6])?;
         let mut tree = b.tree;
+        tighten_ropes(&mut tree);
         tree.nodes.shrink_to_fit();
         tree.ropes.shrink_to_fit();
         tree.prim_ids.shrink_to_fit();
         Ok(tree)
+    }
+}
+
+/// Havran's rope optimization: moves each rope down from the equal-or-larger neighbour to the
+/// deepest node that still covers the whole face, so the neighbor traversal descends less.
+fn tighten_ropes(tree: &mut OctreeTree) {
+    for n in 0..tree.nodes.len() {
+        let cell = tree.nodes[n].cell;
+        for axis in 0..3 {
+            for upper in [false, true] {
+                let f = face(axis, upper);
+                let mut r = tree.ropes[n][f];
+                while r != NO_ROPE && !tree.nodes[r as usize].is_leaf() {
+                    let first = tree.nodes[r as usize].first;
+                    let mid = tree.nodes[first as usize].cell.max;
+                    // The child on our side of the face, on the side of `cell` elsewhere.
+                    let mut c = 0;
+                    for b in 0..3 {
+                        let above = if b == axis {
+                            !upper
+                        } else {
+                            cell.min[b] >= mid[b]
+                        };
+                        if above {
+                            c |= octant_bit(b);
+                        }
+                    }
+                    let child = &tree.nodes[first as usize + c].cell;
+                    let covers = (0..3)
+                        .filter(|&b| b != axis)
+                        .all(|b| child.min[b] <= cell.min[b] && cell.max[b] <= child.max[b]);
+                    if !covers {
+                        break;
+                    }
+                    r = first + c as u32;
+                }
+                tree.ropes[n][f] = r;
+            }
+        }
     }
 }

@@ -101,6 +101,18 @@ fn ropes_lead_to_the_equal_or_larger_neighbour_across_each_face() {
                 }
                 // Equal or larger (up to the rounding of the cells' coordinates).
                 assert!(m.extent()[axis] >= n.cell.extent()[axis] * (1.0 - 1e-5));
+                // The deepest such node: none of its children touching the face covers it.
+                let target = &t.nodes[rope as usize];
+                if !target.is_leaf() {
+                    for c in 0..8 {
+                        let k = &t.nodes[target.first as usize + c].cell;
+                        let touches = if upper { k.min } else { k.max }[axis] == plane;
+                        let covers = (0..3)
+                            .filter(|&b| b != axis)
+                            .all(|b| k.min[b] <= n.cell.min[b] && n.cell.max[b] <= k.max[b]);
+                        assert!(!(touches && covers), "node {i}: rope {rope} not tight");
+                    }
+                }
             }
         }
     }

@@ -44,9 +44,9 @@ pub(super) const fn octant_bit(axis: usize) -> usize {
 ///
 /// Invariants: `nodes[0]` is the root, a cube enclosing the scene bounds (padded); every
 /// primitive whose conservative overlap test ([`crate::scene::Geometry::overlaps_box`]) accepts a
-/// leaf's cell is listed in that leaf; `ropes[n][f]` is the smallest node whose cell covers the
-/// whole face `f` of node `n` from the other side (Samet's equal-or-larger neighbour), or
-/// [`NO_ROPE`] on the root's boundary.
+/// leaf's cell is listed in that leaf; `ropes[n][f]` is the deepest node whose cell covers the
+/// whole face `f` of node `n` from the other side (Samet's equal-or-larger neighbour, moved down
+/// as far as it still covers the face, after Havran), or [`NO_ROPE`] on the root's boundary.
 #[derive(Debug, Clone)]
 pub struct OctreeTree {
     pub(super) nodes: Vec<Node>,
