@@ -4,10 +4,10 @@
 //!
 //! # Why stopping at the current leaf's exit is exact
 //!
-//! Both traversals visit leaves in increasing order of their interval on the `t` line (see
-//! [`axis_ray`]): when the leaf with interval `[enter, exit]` is done, every leaf the ray meets
-//! at parameters up to `exit` has been visited. A primitive is listed in every leaf its
-//! conservative overlap test accepts, and that test pads the cell by
+//! Both traversals visit leaves in increasing order of their interval on the `t` line (see the
+//! crossing rule in `axis_ray.rs`): when the leaf with interval `[enter, exit]` is done, every
+//! leaf the ray meets at parameters up to `exit` has been visited. A primitive is listed in
+//! every leaf its conservative overlap test accepts, and that test pads the cell by
 //! [`OVERLAP_PAD`](crate::geometry::overlap::OVERLAP_PAD) of its largest coordinate, so a
 //! primitive that touches a leaf, or comes within the padding of it, is stored there.
 //!
