@@ -5,6 +5,7 @@
 use super::{parse_threads, with_threads};
 use crate::geometry::{Aabb, Ray, TriangleKernelKind};
 use crate::harness::sweep::{SweepPlot, SweepPoint, SweepRow, SweepSetup, run_sweep, write_sweep};
+use crate::index::OctreeParams;
 use crate::index::grid::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution, resolution};
 use crate::rays::{RaySetKind, incoherent_rays, primary_rays};
 use crate::scene::{Scene, load_scene};
@@ -22,6 +23,8 @@ enum SweepTarget {
     /// Grid resolution: explicit cells along the longest axis (--res) and cube-root heuristic
     /// densities (--lambda), against cells along the longest axis.
     Grid(GridSweepArgs),
+    /// Octree leaf size and depth: one line per --max-depth, against --max-prims.
+    Octree(OctreeSweepArgs),
 }
 
 /// What every sweep takes: the scene, the rays, where to write, how many threads.
@@ -65,6 +68,23 @@ pub struct GridSweepArgs {
     lambda: Vec<f32>,
 }
 
+#[derive(Debug, clap::Args)]
+pub struct OctreeSweepArgs {
+    #[command(flatten)]
+    common: CommonSweepArgs,
+    /// Which traversal of the (same) tree to time.
+    #[arg(long, default_value = "octree", value_parser = ["octree", "octree-topdown"])]
+    traversal: String,
+    /// Leaf sizes (subdivide while a cell holds more), comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64",
+          value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    max_prims: Vec<u32>,
+    /// Maximum depths, comma-separated (one line each).
+    #[arg(long, value_delimiter = ',', default_value = "6,8,10,12",
+          value_parser = clap::value_parser!(u32).range(0..=16))]
+    max_depth: Vec<u32>,
+}
+
 fn parse_lambda(s: &str) -> Result<f32, String> {
     let v: f32 = s
         .trim()
@@ -76,6 +96,7 @@ fn parse_lambda(s: &str) -> Result<f32, String> {
 pub fn run(a: SweepArgs) -> anyhow::Result<()> {
     match a.target {
         SweepTarget::Grid(g) => run_grid(g),
+        SweepTarget::Octree(o) => run_octree(o),
     }
 }
 
@@ -200,15 +221,15 @@ fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
         )),
     };
     let files = write_sweep(&p.out, a.common.rays.name(), &rows, &plot)?;
-    summarize(&rows);
+    summarize(&rows, &format!("grid:lambda={DEFAULT_LAMBDA}"));
     println!("wrote {}", files.csv.display());
     println!("wrote {}", files.rays_chart.display());
     println!("wrote {}", files.build_chart.display());
     Ok(())
 }
 
-/// Prints the fastest point and how the default heuristic compares with it.
-fn summarize(rows: &[SweepRow]) {
+/// Prints the fastest point and how the default (spec `default`) compares with it.
+fn summarize(rows: &[SweepRow], default: &str) {
     let Some(best) = rows
         .iter()
         .max_by(|a, b| a.rays_per_s.total_cmp(&b.rays_per_s))
@@ -223,10 +244,9 @@ fn summarize(rows: &[SweepRow]) {
         best.prim_tests_per_ray,
         best.build_ms
     );
-    let default = format!("grid:lambda={DEFAULT_LAMBDA}");
     if let Some(h) = rows.iter().find(|r| r.spec == default) {
         println!(
-            "heuristic: {} (x = {}): {:.3} Mrays/s ({:.0}% of the fastest), {:.2} tests/ray",
+            "default:   {} (x = {}): {:.3} Mrays/s ({:.0}% of the fastest), {:.2} tests/ray",
             h.spec,
             h.x,
             h.rays_per_s / 1e6,
@@ -234,4 +254,69 @@ fn summarize(rows: &[SweepRow]) {
             h.prim_tests_per_ray
         );
     }
+}
+
+fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
+    let name = a.traversal.as_str();
+    let p = prepare(&a.common, name)?;
+    let d = OctreeParams::default();
+    let mut points: Vec<SweepPoint> = Vec::new();
+    for &depth in &a.max_depth {
+        for &m in &a.max_prims {
+            points.push(SweepPoint {
+                series: format!("max_depth={depth}"),
+                x: m as f64,
+                spec: format!("{name}:max_prims={m},max_depth={depth}").parse()?,
+            });
+        }
+    }
+    let geom = p.scene.geometry();
+    let setup = SweepSetup {
+        geom: &geom,
+        kernel: TriangleKernelKind::Watertight,
+        rays: &p.rays,
+        repeats: a.common.repeats as usize,
+    };
+    eprintln!(
+        "sweeping {name} on '{}' ({} primitives), {} {} rays, {} points, {} threads",
+        p.scene.name,
+        p.scene.len(),
+        p.rays.len(),
+        a.common.rays.name(),
+        points.len(),
+        p.threads
+    );
+    let rows = with_threads(p.threads, || {
+        run_sweep(&setup, &points, |r| {
+            eprintln!(
+                "  {:<44} nodes {:>9}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} nodes/ray",
+                r.spec,
+                r.cells,
+                r.build_ms,
+                r.rays_per_s / 1e6,
+                r.prim_tests_per_ray,
+                r.node_visits_per_ray
+            )
+        })
+    })??;
+    let plot = SweepPlot {
+        title: format!("{name} on {}, {} rays", p.scene.name, a.common.rays.name()),
+        x_label: "max primitives per leaf".into(),
+        log_x: true,
+        marker: Some((
+            d.max_prims as f64,
+            format!(
+                "default (max_prims={}, max_depth={})",
+                d.max_prims, d.max_depth
+            ),
+        )),
+    };
+    let files = write_sweep(&p.out, a.common.rays.name(), &rows, &plot)?;
+    let default: crate::index::IndexSpec =
+        format!("{name}:max_prims={},max_depth={}", d.max_prims, d.max_depth).parse()?;
+    summarize(&rows, &default.to_string());
+    println!("wrote {}", files.csv.display());
+    println!("wrote {}", files.rays_chart.display());
+    println!("wrote {}", files.build_chart.display());
+    Ok(())
 }

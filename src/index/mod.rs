@@ -7,11 +7,13 @@
 mod brute;
 pub mod grid;
 pub mod mailbox;
+pub mod octree;
 mod registry;
 mod stats;
 
 pub use brute::BruteForce;
 pub use grid::{Grid, GridParams};
+pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};
 pub use registry::{
     BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,
 };

@@ -2,7 +2,9 @@
 //! [`TraceIndex`] that the harness, the CLI and reports use. The virtual call happens once per
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
-use super::{BruteForce, BuildError, Counters, Index, IndexInfo, NoStats};
+use super::{
+    BruteForce, BuildError, Counters, Index, IndexInfo, NeighborOctree, NoStats, TopDownOctree,
+};
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
 use rayon::prelude::*;
@@ -31,6 +33,14 @@ const REGISTRY: &[Entry] = &[
     Entry {
         name: "grid",
         build: build_dyn::<super::Grid>,
+    },
+    Entry {
+        name: "octree",
+        build: build_dyn::<NeighborOctree>,
+    },
+    Entry {
+        name: "octree-topdown",
+        build: build_dyn::<TopDownOctree>,
     },
 ];
 

@@ -1,0 +1,271 @@
+//! Building the octree: recursive subdivision of a cube around the scene into octants, with
+//! primitives indexed by the shared conservative overlap test, and face ropes threaded on the way
+//! down.
+
+use super::tree::{INTERNAL, NO_ROPE, Node, OctreeTree, face, octant_bit};
+use crate::geometry::Aabb;
+use crate::index::BuildError;
+use crate::scene::Geometry;
+use glam::Vec3A;
+use serde::{Deserialize, Serialize};
+
+/// Deepest `max_depth` accepted: cells of 2^-16 of the root side are already close to the
+/// overlap test's padding on large coordinates.
+pub const MAX_DEPTH_LIMIT: usize = 16;
+
+/// Node budget: a build that would need more nodes fails with a typed error instead of
+/// exhausting memory (2^24 nodes is about 1 GiB with ropes).
+pub const MAX_NODES: usize = 1 << 24;
+
+/// Build parameters shared by `octree` and `octree-topdown` (plain serde fields, so parameter
+/// sweeps can set them by name: `octree:max_prims=4,max_depth=8`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OctreeParams {
+    /// A cell holding more primitives than this is subdivided (at least 1).
+    pub max_prims: usize,
+    /// Deepest level a leaf may have (the root is level 0; at most [`MAX_DEPTH_LIMIT`]).
+    pub max_depth: usize,
+}
+
+impl Default for OctreeParams {
+    fn default() -> Self {
+        OctreeParams {
+            max_prims: 8,
+            max_depth: 10,
+        }
+    }
+}
+
+fn failed(message: String) -> BuildError {
+    BuildError::Failed {
+        index: "octree".into(),
+        message,
+    }
+}
+
+impl OctreeParams {
+    /// Rejects absurd values with a message that says what to change.
+    pub fn validate(&self) -> Result<(), BuildError> {
+        let bad = |message: String| BuildError::Params {
+            index: "octree".into(),
+            message,
+        };
+        if self.max_prims == 0 {
+            return Err(bad("max_prims must be at least 1".into()));
+        }
+        if self.max_depth > MAX_DEPTH_LIMIT {
+            return Err(bad(format!(
+                "max_depth {} is above the limit {MAX_DEPTH_LIMIT}",
+                self.max_depth
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The root: a cube centred on the scene bounds whose half side exceeds half the largest extent
+/// by 0.1% plus 1e-5 of the largest coordinate, so every primitive lies strictly inside it even
+/// for flat scenes (zero extent on an axis) and after rounding of the centre. A scene that is a
+/// single point at the origin gets a unit half side.
+fn root_cell(bounds: Aabb) -> Result<Aabb, BuildError> {
+    if !(bounds.min.is_finite() && bounds.max.is_finite()) || bounds.is_empty() {
+        return Err(failed(format!(
+            "scene bounds {bounds:?} are not finite; check the scene for NaN or infinite vertices"
+        )));
+    }
+    let scale = bounds.min.abs().max(bounds.max.abs()).max_element();
+    let half = 0.5 * bounds.extent().max_element() * (1.0 + 1.0e-3) + 1.0e-5 * scale;
+    let half = if half > 0.0 { half } else { 1.0 };
+    let c = bounds.center();
+    Ok(Aabb::new(c - Vec3A::splat(half), c + Vec3A::splat(half)))
+}
+
+/// The cell of octant `c` of `cell`, split at `mid`.
+fn octant_cell(cell: &Aabb, mid: Vec3A, c: usize) -> Aabb {
+    let mut b = *cell;
+    for axis in 0..3 {
+        if c & octant_bit(axis) != 0 {
+            b.min[axis] = mid[axis];
+        } else {
+            b.max[axis] = mid[axis];
+        }
+    }
+    b
+}
+
+/// Ropes of child `c` from its parent's ropes: a face toward a sibling leads to that sibling,
+/// a face on the parent's boundary to the parent's neighbour (equal or larger).
+fn child_ropes(parent: &[u32; 6], first: u32, c: usize) -> [u32; 6] {
+    let mut r = *parent;
+    for axis in 0..3 {
+        let bit = octant_bit(axis);
+        if c & bit != 0 {
+            r[face(axis, false)] = first + (c ^ bit) as u32;
+        } else {
+            r[face(axis, true)] = first + (c | bit) as u32;
+        }
+    }
+    r
+}
+
+struct Builder<'a, G: Geometry> {
+    geom: &'a G,
+    params: &'a OctreeParams,
+    tree: OctreeTree,
+}
+
+impl<G: Geometry> Builder<'_, G> {
+    fn make_leaf(&mut self, idx: u32, prims: &[u32]) {
+        let node = &mut self.tree.nodes[idx as usize];
+        node.first = self.tree.prim_ids.len() as u32;
+        node.count = prims.len() as u32;
+        self.tree.prim_ids.extend_from_slice(prims);
+    }
+
+    /// The children's primitive lists, or `None` when the node stays a leaf: few enough
+    /// primitives, the depth limit, a cell too small to split in `f32`, or a split that separates
+    /// nothing (two or more children non-empty and each holding every primitive: coincident or
+    /// duplicate primitives, or a fan around a shared vertex). A split that moves all primitives
+    /// into a single child is kept: it zooms in on a small cluster, bounded by `max_depth`.
+    fn split(&self, cell: &Aabb, mid: Vec3A, prims: &[u32], level: usize) -> Option<[Vec<u32>; 8]> {
+        if prims.len() <= self.params.max_prims || level >= self.params.max_depth {
+            return None;
+        }
+        if !(cell.min.cmplt(mid).all() && mid.cmplt(cell.max).all()) {
+            return None;
+        }
+        let children: [Vec<u32>; 8] = std::array::from_fn(|c| {
+            let b = octant_cell(cell, mid, c);
+            prims
+                .iter()
+                .copied()
+                .filter(|&p| self.geom.overlaps_box(p, &b))
+                .collect()
+        });
+        let non_empty = children.iter().filter(|c| !c.is_empty()).count();
+        let separates = children
+            .iter()
+            .any(|c| !c.is_empty() && c.len() < prims.len());
+        (non_empty <= 1 || separates).then_some(children)
+    }
+
+    fn build(
+        &mut self,
+        idx: u32,
+        prims: &[u32],
+        level: usize,
+        ropes: [u32; 6],
+    ) -> Result<(), BuildError> {
+        self.tree.ropes[idx as usize] = ropes;
+        self.tree.max_level = self.tree.max_level.max(level);
+        let cell = self.tree.nodes[idx as usize].cell;
+        let mid = cell.min + (cell.max - cell.min) * 0.5;
+        let Some(children) = self.split(&cell, mid, prims, level) else {
+            self.make_leaf(idx, prims);
+            return Ok(());
+        };
+        let first = self.tree.nodes.len();
+        if first + 8 > MAX_NODES {
+            return Err(failed(format!(
+                "more than {MAX_NODES} nodes; lower max_depth ({}) or raise max_prims ({})",
+                self.params.max_depth, self.params.max_prims
+            )));
+        }
+        let first = first as u32;
+        for c in 0..8 {
+            self.tree.nodes.push(Node {
+                cell: octant_cell(&cell, mid, c),
+                first: 0,
+                count: 0,
+            });
+            self.tree.ropes.push([NO_ROPE; 6]);
+        }
+        let node = &mut self.tree.nodes[idx as usize];
+        node.first = first;
+        node.count = INTERNAL;
+        for (c, child) in children.iter().enumerate() {
+            let r = child_ropes(&ropes, first, c);
+            self.build(first + c as u32, child, level + 1, r)?;
+        }
+        Ok(())
+    }
+}
+
+impl OctreeTree {
+    /// Builds the octree over `geom`.
+    pub fn build<G: Geometry>(geom: &G, params: &OctreeParams) -> Result<OctreeTree, BuildError> {
+        params.validate()?;
+        if geom.is_empty() {
+            return Err(BuildError::EmptyScene);
+        }
+        if geom.len() >= u32::MAX as usize {
+            return Err(failed(format!("{} primitives exceed u32 ids", geom.len())));
+        }
+        let n = geom.len() as u32;
+        let bounds = (0..n).fold(Aabb::EMPTY, |b, p| b.union(geom.bounds(p)));
+        let root = root_cell(bounds)?;
+        let mut b = Builder {
+            geom,
+            params,
+            tree: OctreeTree {
+                nodes: vec![Node {
+                    cell: root,
+                    first: 0,
+                    count: 0,
+                }],
+                ropes: vec![[NO_ROPE; 6]],
+                prim_ids: Vec::new(),
+                max_level: 0,
+                prim_count: geom.len(),
+            },
+        };
+        let all: Vec<u32> = (0..n).collect();
+        b.build(0, &all, 0, [NO_ROPE; 6])?;
+        let mut tree = b.tree;
+        tighten_ropes(&mut tree);
+        tree.nodes.shrink_to_fit();
+        tree.ropes.shrink_to_fit();
+        tree.prim_ids.shrink_to_fit();
+        Ok(tree)
+    }
+}
+
+/// Havran's rope optimization: moves each rope down from the equal-or-larger neighbour to the
+/// deepest node that still covers the whole face, so the neighbor traversal descends less.
+fn tighten_ropes(tree: &mut OctreeTree) {
+    for n in 0..tree.nodes.len() {
+        let cell = tree.nodes[n].cell;
+        for axis in 0..3 {
+            for upper in [false, true] {
+                let f = face(axis, upper);
+                let mut r = tree.ropes[n][f];
+                while r != NO_ROPE && !tree.nodes[r as usize].is_leaf() {
+                    let first = tree.nodes[r as usize].first;
+                    let mid = tree.nodes[first as usize].cell.max;
+                    // The child on our side of the face, on the side of `cell` elsewhere.
+                    let mut c = 0;
+                    for b in 0..3 {
+                        let above = if b == axis {
+                            !upper
+                        } else {
+                            cell.min[b] >= mid[b]
+                        };
+                        if above {
+                            c |= octant_bit(b);
+                        }
+                    }
+                    let child = &tree.nodes[first as usize + c].cell;
+                    let covers = (0..3)
+                        .filter(|&b| b != axis)
+                        .all(|b| child.min[b] <= cell.min[b] && cell.max[b] <= child.max[b]);
+                    if !covers {
+                        break;
+                    }
+                    r = first + c as u32;
+                }
+                tree.ropes[n][f] = r;
+            }
+        }
+    }
+}

@@ -1,0 +1,158 @@
+//! Octree over the scene's cube with two traversals of the same tree: neighbor links
+//! ([`Neighbor`], registered as `octree`) and the top-down parametric recursion of Revelles et
+//! al. 2000 ([`TopDown`], `octree-topdown`). Both take [`OctreeParams`].
+//!
+//! # Why stopping at the current leaf's exit is exact
+//!
+//! Both traversals visit leaves in increasing order of their interval on the `t` line (see the
+//! crossing rule in `axis_ray.rs`): when the leaf with interval `[enter, exit]` is done, every
+//! leaf the ray meets at parameters up to `exit` has been visited. A primitive is listed in
+//! every leaf its conservative overlap test accepts, and that test pads the cell by
+//! [`OVERLAP_PAD`](crate::geometry::overlap::OVERLAP_PAD) of its largest coordinate, so a
+//! primitive that touches a leaf, or comes within the padding of it, is stored there.
+//!
+//! Traversal stops when the best hit so far has `t_best <= exit`. Any primitive that could still
+//! win has `t <= t_best` (a smaller `t`, or the same `t` and a lower id): its hit point
+//! `ray.at(t)` lies at a parameter `<= exit`, hence in a visited leaf or on its boundary (the
+//! cell is closed, so a tie at exactly `exit` is included). The kernel's point lies on the
+//! primitive up to rounding, and the computed `exit` and the cell planes differ from the exact
+//! ones by rounding only, both far below the overlap padding, so the primitive is stored in a
+//! visited leaf and was already tested. Ties at equal `t` therefore resolve to the lowest id as
+//! in brute force, and `t` itself is the kernel's own value (the geometry's `t` does not depend
+//! on the `t_max` passed in). The stop is `<=`, not `<`, only because of that closedness.
+//!
+//! The rounding argument needs the ray's origin within roughly a hundred scene sizes of the
+//! scene (the padding is 1e-5 of the largest coordinate, `f32` rounding 6e-8 of the distance
+//! travelled); the protocol's ray sets and the agreement tests stay well within that.
+//!
+//! Each primitive is tested at most once per ray through the shared per-thread
+//! [`mailbox`](crate::index::mailbox): a primitive rejected once stays rejected, because the
+//! best `t` only shrinks.
+
+mod axis_ray;
+mod build;
+mod neighbor;
+mod topdown;
+mod tree;
+
+#[cfg(test)]
+mod tests;
+
+pub use build::{MAX_DEPTH_LIMIT, MAX_NODES, OctreeParams};
+pub use neighbor::Neighbor;
+pub use topdown::TopDown;
+pub use tree::OctreeTree;
+
+use super::mailbox::with_mailbox;
+use super::{BuildError, Index, IndexInfo, Stats};
+use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::scene::Geometry;
+use std::marker::PhantomData;
+
+/// An order in which a traversal hands the leaves a ray meets to `visit`.
+///
+/// Contract: leaves come in increasing order of their `t` interval along the ray, starting with
+/// the leaf that holds the ray at its entry into the root (clipped to `ray.t_min`). `visit`
+/// returns the current cutoff (the best `t`, or `-inf` to stop at once); the walk stops after a
+/// leaf whose exit parameter is `>=` the cutoff, or when the ray leaves the octree.
+pub trait LeafOrder: Send + Sync + 'static {
+    fn for_each_leaf<S: Stats>(
+        tree: &OctreeTree,
+        ray: &Ray,
+        stats: &mut S,
+        visit: impl FnMut(&[u32], &mut S) -> f32,
+    );
+}
+
+/// The octree with leaf order `O`.
+#[derive(Debug, Clone)]
+pub struct Octree<O: LeafOrder> {
+    tree: OctreeTree,
+    order: PhantomData<O>,
+}
+
+/// `octree`: traversal through neighbour links.
+pub type NeighborOctree = Octree<Neighbor>;
+/// `octree-topdown`: the Revelles et al. top-down traversal.
+pub type TopDownOctree = Octree<TopDown>;
+
+impl<O: LeafOrder> Octree<O> {
+    /// The tree (cells, for tests that aim rays at cell corners and edges).
+    pub fn tree(&self) -> &OctreeTree {
+        &self.tree
+    }
+}
+
+impl<O: LeafOrder> Index for Octree<O> {
+    type Params = OctreeParams;
+
+    fn build<G: Geometry>(geom: &G, params: &OctreeParams) -> Result<Self, BuildError> {
+        Ok(Octree {
+            tree: OctreeTree::build(geom, params)?,
+            order: PhantomData,
+        })
+    }
+
+    fn closest_hit<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        ray: &Ray,
+        stats: &mut S,
+    ) -> Option<Hit> {
+        with_mailbox(geom.len(), |mb| {
+            let mut best = ClosestHit::new(ray.t_max);
+            O::for_each_leaf(&self.tree, ray, stats, |prims, stats| {
+                for &p in prims {
+                    if mb.first_visit(p) {
+                        stats.prim_test();
+                        if let Some(t) = geom.intersect(p, ray, best.t()) {
+                            best.offer(t, p);
+                        }
+                    }
+                }
+                best.t()
+            });
+            best.get()
+        })
+    }
+
+    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+        with_mailbox(geom.len(), |mb| {
+            let mut found = false;
+            O::for_each_leaf(&self.tree, ray, stats, |prims, stats| {
+                found = prims.iter().any(|&p| {
+                    mb.first_visit(p) && {
+                        stats.prim_test();
+                        geom.intersect(p, ray, ray.t_max).is_some()
+                    }
+                });
+                if found { f32::NEG_INFINITY } else { ray.t_max }
+            });
+            found
+        })
+    }
+
+    fn info(&self) -> IndexInfo {
+        let t = &self.tree;
+        let leaves = t.leaves();
+        IndexInfo {
+            nodes: t.nodes.len(),
+            leaves,
+            depth: t.max_level + 1,
+            memory_bytes: t.memory_bytes(),
+            prim_refs: t.prim_ids.len(),
+            extra: vec![
+                ("empty_leaves".into(), t.empty_leaves() as f64),
+                (
+                    "empty_leaf_fraction".into(),
+                    t.empty_leaves() as f64 / leaves as f64,
+                ),
+                (
+                    "refs_per_prim".into(),
+                    t.prim_ids.len() as f64 / t.prim_count as f64,
+                ),
+            ],
+            ..IndexInfo::default()
+        }
+    }
+}

@@ -1,0 +1,97 @@
+//! The octree's flat node layout, shared by both traversals: nodes with their cells, the eight
+//! children of a node stored contiguously, leaf primitive ids in one array, and face ropes.
+
+use crate::geometry::Aabb;
+
+/// `count` of an internal node.
+pub(super) const INTERNAL: u32 = u32::MAX;
+/// A rope that leads nowhere (the face lies on the root's boundary).
+pub(super) const NO_ROPE: u32 = u32::MAX;
+
+/// One node. Child `c` of an internal node is `first + c`, with the octant bits of Revelles et
+/// al. 2000: `4` = upper half in x, `2` = upper in y, `1` = upper in z.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Node {
+    /// The closed cell. Siblings share their split planes bit for bit (the parent's midpoint is
+    /// computed once and copied), so any two leaves that touch agree on the plane between them.
+    pub cell: Aabb,
+    /// Internal: index of the first of the eight children. Leaf: offset into `prim_ids`.
+    pub first: u32,
+    /// Leaf: number of primitive ids. Internal: [`INTERNAL`].
+    pub count: u32,
+}
+
+impl Node {
+    #[inline(always)]
+    pub fn is_leaf(&self) -> bool {
+        self.count != INTERNAL
+    }
+}
+
+/// Face of a cell: `2 * axis` for the lower face, `2 * axis + 1` for the upper face.
+#[inline(always)]
+pub(super) fn face(axis: usize, upper: bool) -> usize {
+    2 * axis + upper as usize
+}
+
+/// Octant bit of `axis` (x = 4, y = 2, z = 1, as in Revelles et al.).
+#[inline(always)]
+pub(super) const fn octant_bit(axis: usize) -> usize {
+    4 >> axis
+}
+
+/// The built octree that both traversals walk.
+///
+/// Invariants: `nodes[0]` is the root, a cube enclosing the scene bounds (padded); every
+/// primitive whose conservative overlap test ([`crate::scene::Geometry::overlaps_box`]) accepts a
+/// leaf's cell is listed in that leaf; `ropes[n][f]` is the deepest node whose cell covers the
+/// whole face `f` of node `n` from the other side (Samet's equal-or-larger neighbour, moved down
+/// as far as it still covers the face, after Havran), or [`NO_ROPE`] on the root's boundary.
+#[derive(Debug, Clone)]
+pub struct OctreeTree {
+    pub(super) nodes: Vec<Node>,
+    pub(super) ropes: Vec<[u32; 6]>,
+    pub(super) prim_ids: Vec<u32>,
+    /// Deepest leaf level (the root is level 0).
+    pub(super) max_level: usize,
+    /// Number of primitives in the scene it was built on.
+    pub(super) prim_count: usize,
+}
+
+impl OctreeTree {
+    /// The root cell (a cube enclosing the scene, padded).
+    pub fn root_cell(&self) -> Aabb {
+        self.nodes[0].cell
+    }
+
+    /// The cells of all leaves, in node order (for tests that aim rays at cell corners).
+    pub fn leaf_cells(&self) -> impl Iterator<Item = Aabb> + '_ {
+        self.nodes.iter().filter(|n| n.is_leaf()).map(|n| n.cell)
+    }
+
+    /// Primitive ids of a leaf.
+    #[inline(always)]
+    pub(super) fn leaf_prims(&self, node: &Node) -> &[u32] {
+        &self.prim_ids[node.first as usize..(node.first + node.count) as usize]
+    }
+
+    /// Number of leaves.
+    pub fn leaves(&self) -> usize {
+        self.nodes.iter().filter(|n| n.is_leaf()).count()
+    }
+
+    /// Number of leaves without primitives.
+    pub fn empty_leaves(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| n.is_leaf() && n.count == 0)
+            .count()
+    }
+
+    /// Heap bytes: nodes, ropes and leaf primitive ids.
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.capacity() * size_of::<Node>()
+            + self.ropes.capacity() * size_of::<[u32; 6]>()
+            + self.prim_ids.capacity() * size_of::<u32>()
+    }
+}
