@@ -10,10 +10,12 @@ pub mod obj_writer;
 pub mod transform;
 
 pub use error::SceneError;
-pub use geometry::{Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, with_geometry};
+pub use geometry::{
+    Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
+};
 pub use meshes_dir::meshes_in;
 
-use crate::geometry::{Aabb, Sphere, Triangle};
+use crate::geometry::{Aabb, Shape, Sphere, Triangle};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -52,12 +54,15 @@ fn fov45() -> f32 {
     45.0
 }
 
-/// A scene. Primitive ids: triangles `0..triangles.len()` in source order, then spheres.
+/// A scene. Primitive ids: triangles `0..triangles.len()` in source order, then spheres, then
+/// shapes.
 #[derive(Debug, Clone, Default)]
 pub struct Scene {
     pub name: String,
     pub triangles: Vec<Triangle>,
     pub spheres: Vec<Sphere>,
+    /// Boxes, polygons, cylinders, cones and ellipsoids (valid by construction).
+    pub shapes: Vec<Shape>,
     pub lights: Vec<PointLight>,
     pub camera: Option<CameraSpec>,
     /// Bounds the protocol's standard ray sets use: for OBJ files, every `v` line (also unused
@@ -76,7 +81,7 @@ impl Scene {
     }
 
     pub fn len(&self) -> usize {
-        self.triangles.len() + self.spheres.len()
+        self.triangles.len() + self.spheres.len() + self.shapes.len()
     }
 
     pub fn is_empty(&self) -> bool {
@@ -87,7 +92,8 @@ impl Scene {
     pub fn bounds(&self) -> Aabb {
         let t = self.triangles.iter().map(|t| t.bounds());
         let s = self.spheres.iter().map(|s| s.bounds());
-        t.chain(s).fold(Aabb::EMPTY, Aabb::union)
+        let q = self.shapes.iter().map(|s| s.bounds());
+        t.chain(s).chain(q).fold(Aabb::EMPTY, Aabb::union)
     }
 
     /// The bounds the standard ray sets are derived from (see [`Scene::reference_bounds`]).
@@ -101,7 +107,8 @@ impl Scene {
     }
 
     /// Checks what every index relies on: at least one primitive, finite coordinates, spheres
-    /// with a finite positive radius, and fewer than `u32::MAX` primitives.
+    /// with a finite positive radius, and fewer than `u32::MAX` primitives (shapes are checked
+    /// by their constructors).
     pub fn validate(&self) -> Result<(), SceneError> {
         if self.is_empty() {
             return Err(SceneError::Empty(self.name.clone()));
@@ -147,6 +154,7 @@ impl Scene {
         SceneGeometry {
             triangles: Arc::from(self.triangles.as_slice()),
             spheres: Arc::from(self.spheres.as_slice()),
+            shapes: Arc::from(self.shapes.as_slice()),
         }
     }
 
