@@ -8,12 +8,14 @@ mod meshes_dir;
 pub mod obj;
 pub mod obj_writer;
 pub mod transform;
+mod transform_shapes;
 
 pub use error::SceneError;
 pub use geometry::{
     Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
 };
 pub use meshes_dir::meshes_in;
+pub use transform_shapes::ShapeTransformError;
 
 use crate::geometry::{Aabb, Shape, Sphere, Triangle};
 use glam::Vec3;

@@ -28,6 +28,12 @@
 //! [[sphere]]
 //! center = [0.5, 0.5, 0.5]
 //! radius = 0.1
+//!
+//! [[shape]]                              # box, polygons, cylinder, cone, ellipsoid
+//! kind = "cylinder"                      # keys per kind: see shape_schema
+//! base = [0, 0, 0]
+//! top = [0, 1, 0]
+//! radius = 0.2
 //! ```
 
 use crate::scene::{CameraSpec, PointLight};
@@ -49,6 +55,8 @@ pub struct SceneFile {
     pub generators: Vec<Spanned<GeneratorEntry>>,
     #[serde(default, rename = "sphere")]
     pub spheres: Vec<Spanned<SphereEntry>>,
+    #[serde(default, rename = "shape")]
+    pub shapes: Vec<Spanned<super::shape_schema::ShapeEntry>>,
 }
 
 /// `[[mesh]]`: an OBJ file placed by a transform.
