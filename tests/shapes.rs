@@ -137,3 +137,90 @@ impl accelbench::scene::GeometryVisitor for Probe {
             .is_some()
     }
 }
+
+/// The overlap tests grids, octrees and kd-trees store shapes by are conservative where it
+/// matters: the point where the shared kernel reports a hit lies in a cell that the shape's
+/// `overlaps_box` accepts, for every kind; and the exact tests (boxes, polygons) do reject some
+/// cells their bounds touch.
+#[test]
+fn hit_points_lie_in_cells_the_overlap_test_accepts() {
+    let scene = generators::generate("shapes", 800, 3).unwrap();
+    let rays = common::agreement_rays(&scene, 3000);
+    let geom = scene.geometry();
+    let first_shape = (scene.triangles.len() + scene.spheres.len()) as u32;
+    let report = accelbench::scene::with_geometry(
+        &geom,
+        accelbench::geometry::TriangleKernelKind::Watertight,
+        CellCheck {
+            bounds: scene.bounds(),
+            cells: 12,
+            first: first_shape,
+            rays,
+        },
+    );
+    assert!(report.hits > 2000, "{report:?}");
+    assert_eq!(report.missing, Vec::<String>::new());
+    assert!(report.rejected_by_exact_test > 100, "{report:?}");
+}
+
+#[derive(Debug)]
+struct CellReport {
+    hits: usize,
+    missing: Vec<String>,
+    rejected_by_exact_test: usize,
+}
+
+struct CellCheck {
+    bounds: accelbench::geometry::Aabb,
+    cells: usize,
+    first: u32,
+    rays: Vec<Ray>,
+}
+
+impl accelbench::scene::GeometryVisitor for CellCheck {
+    type Output = CellReport;
+    fn visit<G: accelbench::scene::Geometry>(self, geom: G) -> CellReport {
+        use accelbench::geometry::Aabb;
+        let size = self.bounds.extent() / self.cells as f32;
+        let cell = |i: [usize; 3]| {
+            let lo = self.bounds.min + size * Vec3A::new(i[0] as f32, i[1] as f32, i[2] as f32);
+            Aabb::new(lo, lo + size)
+        };
+        let mut report = CellReport {
+            hits: 0,
+            missing: Vec::new(),
+            rejected_by_exact_test: 0,
+        };
+        for prim in self.first..geom.len() as u32 {
+            for r in &self.rays {
+                let Some(t) = geom.intersect(prim, r, r.t_max) else {
+                    continue;
+                };
+                report.hits += 1;
+                let p = r.at(t);
+                let rel = (p - self.bounds.min) / size;
+                let i = rel
+                    .to_array()
+                    .map(|x| (x.max(0.0) as usize).min(self.cells - 1));
+                if !geom.overlaps_box(prim, &cell(i)) {
+                    report
+                        .missing
+                        .push(format!("prim {prim} at {p:?} ray {r:?}"));
+                }
+            }
+            // Cells the bounds touch but the exact tests reject.
+            let b = geom.bounds(prim);
+            for x in 0..self.cells {
+                for y in 0..self.cells {
+                    for z in 0..self.cells {
+                        let c = cell([x, y, z]);
+                        if b.overlaps(&c) && !geom.overlaps_box(prim, &c) {
+                            report.rejected_by_exact_test += 1;
+                        }
+                    }
+                }
+            }
+        }
+        report
+    }
+}
