@@ -17,6 +17,8 @@ pub struct Cone {
     radius: f32,
     /// `(radius / height)^2`: the squared slope of the side.
     k2: f32,
+    /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
+    bounds: Aabb,
 }
 
 impl Cone {
@@ -33,13 +35,16 @@ impl Cone {
             return Err(ShapeError::ZeroLength("cone"));
         }
         let k = radius / height;
-        Ok(Cone {
+        let mut shape = Cone {
             apex,
             axis: (base - apex) / height,
             height,
             radius,
             k2: k * k,
-        })
+            bounds: Aabb::EMPTY,
+        };
+        shape.bounds = shape.compute_bounds();
+        Ok(shape)
     }
 
     pub fn apex(&self) -> Vec3A {
@@ -56,6 +61,10 @@ impl Cone {
 
     /// The base disc's bounds grown by the apex.
     pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn compute_bounds(&self) -> Aabb {
         let b = padded_bounds(self.base(), disc_half_extent(self.axis, self.radius));
         b.union(padded_bounds(self.apex, Vec3A::ZERO))
     }

@@ -15,6 +15,8 @@ pub struct Cylinder {
     axis: Vec3A,
     height: f32,
     radius: f32,
+    /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
+    bounds: Aabb,
 }
 
 impl Cylinder {
@@ -30,12 +32,15 @@ impl Cylinder {
         if !(height.is_finite() && height > 0.0) {
             return Err(ShapeError::ZeroLength("cylinder"));
         }
-        Ok(Cylinder {
+        let mut shape = Cylinder {
             base,
             axis: (top - base) / height,
             height,
             radius,
-        })
+            bounds: Aabb::EMPTY,
+        };
+        shape.bounds = shape.compute_bounds();
+        Ok(shape)
     }
 
     pub fn base(&self) -> Vec3A {
@@ -52,6 +57,10 @@ impl Cylinder {
 
     /// The union of the two cap discs' bounds.
     pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn compute_bounds(&self) -> Aabb {
         let e = disc_half_extent(self.axis, self.radius);
         let b = padded_bounds(self.base, e);
         b.union(padded_bounds(self.top(), e))

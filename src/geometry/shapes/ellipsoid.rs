@@ -16,6 +16,8 @@ pub struct Ellipsoid {
     axes: Mat3A,
     /// `diag(1 / radii) * axes^T`: world offsets to the unit-sphere frame.
     to_unit: Mat3A,
+    /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
+    bounds: Aabb,
 }
 
 impl Ellipsoid {
@@ -31,12 +33,15 @@ impl Ellipsoid {
         let axes = orthonormal("ellipsoid axes", axes)?;
         let inv = Vec3A::ONE / radii;
         let to_unit = Mat3A::from_cols(axes.row(0) * inv, axes.row(1) * inv, axes.row(2) * inv);
-        Ok(Ellipsoid {
+        let mut shape = Ellipsoid {
             center,
             radii,
             axes,
             to_unit,
-        })
+            bounds: Aabb::EMPTY,
+        };
+        shape.bounds = shape.compute_bounds();
+        Ok(shape)
     }
 
     pub fn center(&self) -> Vec3A {
@@ -53,6 +58,10 @@ impl Ellipsoid {
 
     /// Tight bounds: half-extent `sqrt(sum_j (axes_ij radii_j)^2)` on world axis `i`.
     pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn compute_bounds(&self) -> Aabb {
         let m = Mat3A::from_cols(
             self.axes.x_axis * self.radii.x,
             self.axes.y_axis * self.radii.y,

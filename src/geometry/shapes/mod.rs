@@ -170,7 +170,8 @@ fn orthonormal(what: &'static str, m: Mat3A) -> Result<Mat3A, ShapeError> {
 /// The half-extents of a disc of radius `r` centred on the origin with unit normal `n`:
 /// `r * sqrt(1 - n_i^2)` per axis.
 fn disc_half_extent(n: Vec3A, r: f32) -> Vec3A {
-    (Vec3A::ONE - n * n).max(Vec3A::ZERO).powf(0.5) * r
+    let s = (Vec3A::ONE - n * n).max(Vec3A::ZERO);
+    Vec3A::new(s.x.sqrt(), s.y.sqrt(), s.z.sqrt()) * r
 }
 
 #[cfg(test)]

@@ -18,6 +18,8 @@ pub struct Obb {
     axes: Mat3A,
     /// `axes^T`: world offsets to local coordinates.
     to_local: Mat3A,
+    /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
+    bounds: Aabb,
 }
 
 impl Obb {
@@ -31,12 +33,15 @@ impl Obb {
             }
         }
         let axes = orthonormal("box axes", axes)?;
-        Ok(Obb {
+        let mut shape = Obb {
             center,
             half: half_extents,
             axes,
             to_local: axes.transpose(),
-        })
+            bounds: Aabb::EMPTY,
+        };
+        shape.bounds = shape.compute_bounds();
+        Ok(shape)
     }
 
     pub fn center(&self) -> Vec3A {
@@ -53,6 +58,10 @@ impl Obb {
 
     /// World half-extent per axis: `sum_j |axes_ij| half_j`.
     pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn compute_bounds(&self) -> Aabb {
         padded_bounds(self.center, abs(self.axes) * self.half)
     }
 
