@@ -1,5 +1,6 @@
 //! Finite, capped, arbitrarily oriented right circular cones.
 
+use super::cylinder::RIM_SLACK;
 use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
 use crate::geometry::{Aabb, Ray};
 use glam::Vec3A;
@@ -117,17 +118,21 @@ pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
             (s0, s1) = (0.0, 0.0);
         }
     }
+    // Both range tests are widened by a bound on their own rounding, so a ray through the rim
+    // is taken by the side or the base and never slips between them.
+    let (op_len, dp_len) = (op.length(), dp.length());
     let on_side = |t: f32| {
         let z = oz + t * dz;
-        if (0.0..=c.height).contains(&z) {
+        let slack = RIM_SLACK * (oz.abs() + (t * dz).abs());
+        if z >= -slack && z <= c.height + slack {
             t
         } else {
             f32::NAN
         }
     };
-    let r2 = c.radius * c.radius;
     let on_base = |t: f32| {
-        if (op + dp * t).length_squared() <= r2 {
+        let reach = c.radius + RIM_SLACK * (op_len + t.abs() * dp_len);
+        if (op + dp * t).length_squared() <= reach * reach {
             t
         } else {
             f32::NAN
@@ -208,6 +213,59 @@ mod tests {
         assert!((t - 1.0e4).abs() <= 1e-3, "{t}");
         let t = hit(&far, [-1.0, 0.0, 1.0e4 + 0.5], [1.0, 0.0, 0.0]).unwrap();
         assert!((t - 0.995).abs() <= 2e-3, "{t}");
+    }
+
+    /// Rays aimed exactly at points of the base rim from outside never slip between the side
+    /// and base tests (unless the exact line only touches the rim).
+    #[test]
+    fn rim_is_watertight() {
+        let c = Cone::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
+        let (u, v) = c.axis.any_orthonormal_pair();
+        let mut s = 5u64;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 40) as f32) / (1u64 << 24) as f32
+        };
+        let (o64, w, h, r) = (
+            c.apex.as_dvec3(),
+            c.axis.as_dvec3(),
+            c.height as f64,
+            c.radius as f64,
+        );
+        let penetration = |ray: &Ray| {
+            let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+            (0..=2000)
+                .map(|k| {
+                    let q = o + d * (0.99 + 0.02 * k as f64 / 2000.0) - o64;
+                    let z = q.dot(w);
+                    let radial = (q - w * z).length();
+                    (r * z / h - radial).min(h - z)
+                })
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let mut slipped = Vec::new();
+        for _ in 0..20000 {
+            let a = std::f32::consts::TAU * next();
+            let rim = c.base() + (u * a.cos() + v * a.sin()) * c.radius;
+            let o = Vec3A::new(next(), next(), next()) * 8.0 - 4.0;
+            if c.bounds().contains(o) {
+                continue;
+            }
+            let ray = Ray::infinite(o.into(), (rim - o).into()).unwrap();
+            match intersect(&c, &ray, f32::INFINITY) {
+                Some(t) if t <= 1.0 + 1e-4 => {}
+                other if penetration(&ray) > 1e-6 => slipped.push((ray, other)),
+                _ => {}
+            }
+        }
+        assert!(
+            slipped.is_empty(),
+            "{} slipped, first {:?}",
+            slipped.len(),
+            slipped[0]
+        );
     }
 
     #[test]

@@ -85,6 +85,10 @@ impl Cylinder {
     }
 }
 
+/// Relative widening of the cylinder's and cone's range tests (a few ulps of the magnitudes
+/// involved), so rims are watertight.
+pub(super) const RIM_SLACK: f32 = 8.0 * f32::EPSILON;
+
 /// The first crossing of the side (stable quadratic on the components off the axis, valid for
 /// `0 <= z <= height`) or a cap (plane `z = 0` or `z = height`, valid within the radius).
 #[inline]
@@ -92,17 +96,21 @@ pub fn intersect(c: &Cylinder, ray: &Ray, t_max: f32) -> Option<f32> {
     let o = ray.origin - c.base;
     let (oz, dz) = (o.dot(c.axis), ray.dir.dot(c.axis));
     let (op, dp) = (o - c.axis * oz, ray.dir - c.axis * dz);
+    // Both range tests are widened by a bound on their own rounding, so a ray through the rim
+    // is taken by the side or the cap and never slips between them.
+    let (op_len, dp_len) = (op.length(), dp.length());
     let on_side = |t: f32| {
         let z = oz + t * dz;
-        if (0.0..=c.height).contains(&z) {
+        let slack = RIM_SLACK * (oz.abs() + (t * dz).abs());
+        if z >= -slack && z <= c.height + slack {
             t
         } else {
             f32::NAN
         }
     };
-    let r2 = c.radius * c.radius;
     let on_cap = |t: f32| {
-        if (op + dp * t).length_squared() <= r2 {
+        let reach = c.radius + RIM_SLACK * (op_len + t.abs() * dp_len);
+        if (op + dp * t).length_squared() <= reach * reach {
             t
         } else {
             f32::NAN
@@ -183,6 +191,59 @@ mod tests {
         .unwrap();
         let t = hit(&thin, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
         assert!((t - 9999.99).abs() <= 1e-3, "{t}");
+    }
+
+    /// Rays aimed exactly at points of the rims (where side and cap meet) from outside never
+    /// slip through between the side and cap tests: they hit at the rim, `t = 1`.
+    #[test]
+    fn rims_are_watertight() {
+        let c = Cylinder::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
+        let (u, v) = c.axis.any_orthonormal_pair();
+        let mut s = 3u64;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 40) as f32) / (1u64 << 24) as f32
+        };
+        let mut slipped = Vec::new();
+        for i in 0..20000 {
+            let a = std::f32::consts::TAU * next();
+            let end = if i % 2 == 0 { c.base() } else { c.top() };
+            let rim = end + (u * a.cos() + v * a.sin()) * c.radius;
+            let o = Vec3A::new(next(), next(), next()) * 8.0 - 4.0;
+            if c.bounds().contains(o) {
+                continue;
+            }
+            let r = Ray::infinite(o.into(), (rim - o).into()).unwrap();
+            match intersect(&c, &r, f32::INFINITY) {
+                Some(t) if t <= 1.0 + 1e-4 => {}
+                // Only a ray whose exact line enters the solid must hit; one that just
+                // touches the rim (on the silhouette, within the rounding of the aim) may miss.
+                other if penetration(&c, &r) > 1e-6 => slipped.push((r, other)),
+                _ => {}
+            }
+        }
+        assert!(
+            slipped.is_empty(),
+            "{} slipped, first {:?}",
+            slipped.len(),
+            slipped[0]
+        );
+    }
+
+    /// How deep (in `f64`) the exact line of `r` gets into the solid for `t` near 1.
+    fn penetration(c: &Cylinder, r: &Ray) -> f64 {
+        let (o, d) = (r.origin.as_dvec3(), r.dir.as_dvec3());
+        let (b, w) = (c.base.as_dvec3(), c.axis.as_dvec3());
+        (0..=2000)
+            .map(|k| {
+                let q = o + d * (0.99 + 0.02 * k as f64 / 2000.0) - b;
+                let z = q.dot(w);
+                let radial = (q - w * z).length();
+                (c.radius as f64 - radial).min(z).min(c.height as f64 - z)
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     #[test]
