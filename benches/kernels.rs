@@ -99,5 +99,53 @@ fn kernels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, kernels);
+/// The shape kernels of issue 10 on the same rays, one shape of each kind over the rays' target
+/// region.
+fn shape_kernels(c: &mut Criterion) {
+    use accelbench::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
+    use accelbench::geometry::shapes::{cone, cylinder, ellipsoid, obb, polygon};
+    use glam::Mat3A;
+    let rays = rays(&mut SplitMix64::new(5));
+    let center = Vec3A::new(0.5, 0.5, 0.1);
+    let tilt = Mat3A::from_axis_angle(Vec3::new(1.0, 0.5, 0.2).normalize(), 0.4);
+    let ring = |k: usize, r: &dyn Fn(usize) -> f32| -> Vec<Vec3A> {
+        (0..k)
+            .map(|j| {
+                let a = std::f32::consts::TAU * j as f32 / k as f32;
+                center + tilt * Vec3A::new(a.cos(), a.sin(), 0.0) * r(j)
+            })
+            .collect()
+    };
+    let bx = Obb::new(center, Vec3A::new(0.6, 0.5, 0.3), tilt).unwrap();
+    let convex = Polygon::convex(ring(6, &|_| 0.7)).unwrap();
+    let star = Polygon::new(ring(10, &|j| if j % 2 == 0 { 0.8 } else { 0.35 })).unwrap();
+    let cyl = Cylinder::new(center - tilt.z_axis * 0.4, center + tilt.z_axis * 0.4, 0.6).unwrap();
+    let con = Cone::new(center - tilt.z_axis * 0.3, center + tilt.z_axis * 0.5, 0.7).unwrap();
+    let ell = Ellipsoid::new(center, Vec3A::new(0.7, 0.5, 0.3), tilt).unwrap();
+    let mut g = c.benchmark_group("kernels");
+    g.throughput(Throughput::Elements(PAIRS as u64));
+    macro_rules! bench {
+        ($name:expr, $kernel:path, $shape:expr) => {
+            g.bench_function(BenchmarkId::new("shape", $name), |b| {
+                b.iter(|| {
+                    let mut n = 0u32;
+                    for r in &rays {
+                        n += $kernel(black_box($shape), r, r.t_max).is_some() as u32;
+                    }
+                    n
+                })
+            });
+        };
+    }
+    bench!("box-slabs", obb::intersect_slabs, &bx);
+    bench!("box-front-planes", obb::intersect_front_planes, &bx);
+    bench!("convex-polygon", polygon::intersect_convex, &convex);
+    bench!("concave-polygon", polygon::intersect_concave, &star);
+    bench!("cylinder", cylinder::intersect, &cyl);
+    bench!("cone", cone::intersect, &con);
+    bench!("ellipsoid", ellipsoid::intersect, &ell);
+    g.finish();
+}
+
+criterion_group!(benches, kernels, shape_kernels);
 criterion_main!(benches);

@@ -392,7 +392,14 @@ fn cli_sweep_octree_writes_csv_and_charts() {
     for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
         assert!(out.join(f).exists(), "{f}");
     }
-    let bad = run(&["sweep", "octree", "--scene", "icosphere", "--max-depth", "99"]);
+    let bad = run(&[
+        "sweep",
+        "octree",
+        "--scene",
+        "icosphere",
+        "--max-depth",
+        "99",
+    ]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("99"));
 }

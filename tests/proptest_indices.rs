@@ -149,6 +149,7 @@ proptest! {
         let geom = SceneGeometry {
             triangles: Arc::from(tris.as_slice()),
             spheres: Arc::from(spheres.as_slice()),
+            ..SceneGeometry::default()
         };
         for name in index_names() {
             let m = verify_against_brute(

@@ -145,7 +145,7 @@ pub fn run(config: &WatertightConfig) -> Result<Vec<LeakRow>, BuildError> {
             let rays = inside_rays(&mesh, offset, config.rays, config.seed ^ oi as u64);
             let geom = SceneGeometry {
                 triangles: Arc::from(mesh.triangles.as_slice()),
-                spheres: Arc::from(Vec::new()),
+                ..SceneGeometry::default()
             };
             let aimed = rays
                 .len()

@@ -8,8 +8,8 @@ use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct GenArgs {
-    /// Generator name (icosphere, soup, terrain, stadium, slivers, room, flat; spheres and mixed
-    /// contain spheres, which OBJ cannot hold).
+    /// Generator name (icosphere, soup, terrain, stadium, slivers, room, flat; spheres, mixed
+    /// and shapes contain spheres or shapes, which OBJ cannot hold).
     #[arg(long)]
     generator: String,
     /// Target primitive count.
@@ -27,12 +27,12 @@ pub fn run(a: GenArgs) -> anyhow::Result<()> {
     let spec = GeneratorSpec::new(&a.generator, a.n, a.seed)?;
     let scene = spec.generate()?;
     anyhow::ensure!(
-        scene.spheres.is_empty(),
-        "generator '{}' makes spheres, which an OBJ file cannot hold; choose a triangle generator ({})",
+        scene.spheres.is_empty() && scene.shapes.is_empty(),
+        "generator '{}' makes spheres or shapes, which an OBJ file cannot hold; choose a triangle generator ({})",
         spec.name,
         GENERATOR_NAMES
             .iter()
-            .filter(|g| !matches!(**g, "spheres" | "mixed"))
+            .filter(|g| !matches!(**g, "spheres" | "mixed" | "shapes"))
             .copied()
             .collect::<Vec<_>>()
             .join(", ")

@@ -17,6 +17,7 @@ pub fn run(a: InfoArgs) -> anyhow::Result<()> {
     println!("primitives:  {}", scene.len());
     println!("triangles:   {}", scene.triangles.len());
     println!("spheres:     {}", scene.spheres.len());
+    println!("shapes:      {}", scene.shapes.len());
     println!(
         "degenerate:  {} zero-area triangles",
         scene.degenerate_triangles()

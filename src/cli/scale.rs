@@ -16,7 +16,8 @@ use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct ScaleArgs {
-    /// Generator name (icosphere, spheres, soup, terrain, stadium, slivers, room, flat, mixed).
+    /// Generator name (icosphere, spheres, soup, terrain, stadium, slivers, room, flat, mixed,
+    /// shapes).
     #[arg(long)]
     generator: String,
     /// Primitive counts, comma-separated.

@@ -7,8 +7,23 @@ use glam::Vec3A;
 /// The first crossing of the box surface in `[ray.t_min, t_max]`.
 #[inline]
 pub fn intersect_box(b: &Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
-    let t_lo = (b.min - ray.origin) * ray.inv_dir;
-    let t_hi = (b.max - ray.origin) * ray.inv_dir;
+    slab_first_hit(b.min, b.max, ray.origin, ray.inv_dir, ray.t_min, t_max)
+}
+
+/// The exact slab method on the box `[min, max]` for the ray `origin + t / inv_dir`: the entry
+/// distance, or the exit distance when the ray starts inside, if it lies in `[t_min, t_max]`.
+/// Shared by [`intersect_box`] and the oriented box (which passes its local-frame ray).
+#[inline]
+pub(crate) fn slab_first_hit(
+    min: Vec3A,
+    max: Vec3A,
+    origin: Vec3A,
+    inv_dir: Vec3A,
+    t_min: f32,
+    t_max: f32,
+) -> Option<f32> {
+    let t_lo = (min - origin) * inv_dir;
+    let t_hi = (max - origin) * inv_dir;
     // A NaN (origin on a face plane, zero direction on that axis) puts no constraint.
     let near = Vec3A::select(t_lo.cmpeq(t_lo), t_lo, Vec3A::NEG_INFINITY).min(Vec3A::select(
         t_hi.cmpeq(t_hi),
@@ -26,7 +41,7 @@ pub fn intersect_box(b: &Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
     }
     [enter, exit]
         .into_iter()
-        .find(|&t| t >= ray.t_min && t <= t_max && t.is_finite())
+        .find(|&t| t >= t_min && t <= t_max && t.is_finite())
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ mod hit;
 pub mod overlap;
 mod plane;
 mod ray;
+pub mod shapes;
 pub mod sphere;
 pub mod triangle;
 
@@ -15,5 +16,6 @@ pub use aabb_kernel::intersect_box;
 pub use hit::{ClosestHit, Hit, closer};
 pub use plane::intersect_plane;
 pub use ray::{Ray, RayError, Shear};
+pub use shapes::{Shape, ShapeError};
 pub use sphere::Sphere;
 pub use triangle::{Triangle, TriangleKernel, TriangleKernelKind};

@@ -20,7 +20,7 @@ pub enum SceneError {
         line: usize,
         text: String,
     },
-    #[error("{0} has no primitives: a scene needs at least one triangle or sphere")]
+    #[error("{0} has no primitives: a scene needs at least one triangle, sphere or shape")]
     Empty(String),
     #[error("scene {0}: {1}")]
     Invalid(String, String),

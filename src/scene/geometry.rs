@@ -6,12 +6,13 @@
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
 use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
-use crate::geometry::{Aabb, Ray, Sphere, Triangle, TriangleKernel, TriangleKernelKind};
+use crate::geometry::{Aabb, Ray, Shape, Sphere, Triangle, TriangleKernel, TriangleKernelKind};
 use glam::Vec3A;
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-/// A set of primitives with ids `0..len()` in scene order (triangles first, then spheres).
+/// A set of primitives with ids `0..len()` in scene order (triangles first, then spheres, then
+/// shapes).
 ///
 /// Contract of [`Geometry::intersect`]: the returned `t` is the shared kernel's `t` clamped into
 /// the slab interval of the primitive's own bounds ([`Aabb::ray_interval`]), and a kernel hit
@@ -60,11 +61,12 @@ fn accept(t: Option<f32>, bounds: Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
 pub struct SceneGeometry {
     pub triangles: Arc<[Triangle]>,
     pub spheres: Arc<[Sphere]>,
+    pub shapes: Arc<[Shape]>,
 }
 
 impl SceneGeometry {
     pub fn len(&self) -> usize {
-        self.triangles.len() + self.spheres.len()
+        self.triangles.len() + self.spheres.len() + self.shapes.len()
     }
 
     pub fn is_empty(&self) -> bool {
@@ -74,11 +76,28 @@ impl SceneGeometry {
     /// Unit geometric normal of primitive `prim` at the surface point `p` (for the final hit
     /// only); zero for a degenerate triangle. Not oriented toward the ray.
     pub fn normal_at(&self, prim: u32, p: Vec3A) -> Vec3A {
-        let i = prim as usize;
-        match self.triangles.get(i) {
-            Some(t) => t.normal(),
-            None => self.spheres[i - self.triangles.len()].normal_at(p),
-        }
+        normal_of(&self.triangles, &self.spheres, &self.shapes, prim, p)
+    }
+}
+
+/// Unit geometric normal of primitive `prim` (ids: triangles, then spheres, then shapes) at the
+/// surface point `p`, for the final hit only; zero for a degenerate triangle. Not oriented
+/// toward the ray.
+pub fn normal_of(
+    tris: &[Triangle],
+    spheres: &[Sphere],
+    shapes: &[Shape],
+    prim: u32,
+    p: Vec3A,
+) -> Vec3A {
+    let i = prim as usize;
+    let (nt, ns) = (tris.len(), spheres.len());
+    if i < nt {
+        tris[i].normal()
+    } else if i < nt + ns {
+        spheres[i - nt].normal_at(p)
+    } else {
+        shapes[i - nt - ns].normal_at(p)
     }
 }
 
@@ -184,21 +203,114 @@ impl<K: TriangleKernel> Geometry for Mixed<K> {
     }
 }
 
+/// Triangles (ids `0..n_tri`), spheres (then `n_sph` ids) and shapes (the rest): triangle kernel
+/// `K`, spheres by the stable algebraic kernel, shapes by their kind's kernel
+/// ([`Shape::intersect`]). Only scenes with shapes use it, so the others never pay for the
+/// shape branch.
+#[derive(Debug, Clone)]
+pub struct WithShapes<K: TriangleKernel> {
+    pub tris: Arc<[Triangle]>,
+    pub spheres: Arc<[Sphere]>,
+    pub shapes: Arc<[Shape]>,
+    kernel: PhantomData<K>,
+}
+
+impl<K: TriangleKernel> WithShapes<K> {
+    pub fn new(tris: Arc<[Triangle]>, spheres: Arc<[Sphere]>, shapes: Arc<[Shape]>) -> Self {
+        WithShapes {
+            tris,
+            spheres,
+            shapes,
+            kernel: PhantomData,
+        }
+    }
+
+    /// Which primitive `prim` is.
+    #[inline(always)]
+    fn prim(&self, prim: u32) -> Prim<'_> {
+        let i = prim as usize;
+        let (nt, ns) = (self.tris.len(), self.spheres.len());
+        if i < nt {
+            Prim::Triangle(&self.tris[i])
+        } else if i < nt + ns {
+            Prim::Sphere(&self.spheres[i - nt])
+        } else {
+            Prim::Shape(&self.shapes[i - nt - ns])
+        }
+    }
+}
+
+/// A primitive of a [`WithShapes`] geometry.
+enum Prim<'a> {
+    Triangle(&'a Triangle),
+    Sphere(&'a Sphere),
+    Shape(&'a Shape),
+}
+
+impl<K: TriangleKernel> Geometry for WithShapes<K> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.tris.len() + self.spheres.len() + self.shapes.len()
+    }
+    #[inline]
+    fn bounds(&self, prim: u32) -> Aabb {
+        match self.prim(prim) {
+            Prim::Triangle(t) => t.bounds(),
+            Prim::Sphere(s) => s.bounds(),
+            Prim::Shape(s) => s.bounds(),
+        }
+    }
+    #[inline]
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
+        match self.prim(prim) {
+            Prim::Triangle(t) => accept(K::intersect(t, ray, ray.t_max), t.bounds(), ray, t_max),
+            Prim::Sphere(s) => accept(
+                intersect_algebraic(s, ray, ray.t_max),
+                s.bounds(),
+                ray,
+                t_max,
+            ),
+            Prim::Shape(s) => accept(s.intersect(ray, ray.t_max), s.bounds(), ray, t_max),
+        }
+    }
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
+        match self.prim(prim) {
+            Prim::Triangle(t) => triangle_overlaps_box(t, cell),
+            Prim::Sphere(s) => sphere_overlaps_box(s, cell),
+            Prim::Shape(s) => s.overlaps_box(cell),
+        }
+    }
+    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
+        match self.prim(prim) {
+            Prim::Triangle(t) => t.normal(),
+            Prim::Sphere(s) => s.normal_at(ray.at(t)),
+            Prim::Shape(s) => s.normal_at(ray.at(t)),
+        }
+    }
+}
+
 /// Something to run on a concrete geometry type (closures cannot be generic).
 pub trait GeometryVisitor {
     type Output;
     fn visit<G: Geometry>(self, geom: G) -> Self::Output;
 }
 
-/// Runs `v` on the geometry type that fits the scene: triangle-only scenes get [`Triangles`],
-/// others [`Mixed`]; the triangle kernel is fixed at compile time inside.
+/// Runs `v` on the geometry type that fits the scene: scenes with shapes get [`WithShapes`],
+/// triangle-only scenes [`Triangles`], others [`Mixed`]; the triangle kernel is fixed at
+/// compile time inside.
 pub fn with_geometry<V: GeometryVisitor>(
     data: &SceneGeometry,
     kernel: TriangleKernelKind,
     v: V,
 ) -> V::Output {
     fn pick<K: TriangleKernel, V: GeometryVisitor>(data: &SceneGeometry, v: V) -> V::Output {
-        if data.spheres.is_empty() {
+        if !data.shapes.is_empty() {
+            v.visit(WithShapes::<K>::new(
+                data.triangles.clone(),
+                data.spheres.clone(),
+                data.shapes.clone(),
+            ))
+        } else if data.spheres.is_empty() {
             v.visit(Triangles::<K>::new(data.triangles.clone()))
         } else {
             v.visit(Mixed::<K>::new(

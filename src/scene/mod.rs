@@ -10,14 +10,18 @@ mod meshes_dir;
 pub mod obj;
 pub mod obj_writer;
 pub mod transform;
+mod transform_shapes;
 
 pub use area_light::{AreaLight, MAX_AREA_LIGHT_SAMPLES};
 pub use error::SceneError;
-pub use geometry::{Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, with_geometry};
+pub use geometry::{
+    Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
+};
 pub use material::{Material, MaterialMap};
 pub use meshes_dir::meshes_in;
+pub use transform_shapes::ShapeTransformError;
 
-use crate::geometry::{Aabb, Sphere, Triangle};
+use crate::geometry::{Aabb, Shape, Sphere, Triangle};
 use glam::{Vec3, Vec3A};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -56,12 +60,15 @@ fn fov45() -> f32 {
     45.0
 }
 
-/// A scene. Primitive ids: triangles `0..triangles.len()` in source order, then spheres.
+/// A scene. Primitive ids: triangles `0..triangles.len()` in source order, then spheres, then
+/// shapes.
 #[derive(Debug, Clone, Default)]
 pub struct Scene {
     pub name: String,
     pub triangles: Vec<Triangle>,
     pub spheres: Vec<Sphere>,
+    /// Boxes, polygons, cylinders, cones and ellipsoids (valid by construction).
+    pub shapes: Vec<Shape>,
     pub lights: Vec<PointLight>,
     pub camera: Option<CameraSpec>,
     /// Bounds the protocol's standard ray sets use: for OBJ files, every `v` line (also unused
@@ -84,7 +91,7 @@ impl Scene {
     }
 
     pub fn len(&self) -> usize {
-        self.triangles.len() + self.spheres.len()
+        self.triangles.len() + self.spheres.len() + self.shapes.len()
     }
 
     pub fn is_empty(&self) -> bool {
@@ -95,7 +102,8 @@ impl Scene {
     pub fn bounds(&self) -> Aabb {
         let t = self.triangles.iter().map(|t| t.bounds());
         let s = self.spheres.iter().map(|s| s.bounds());
-        t.chain(s).fold(Aabb::EMPTY, Aabb::union)
+        let q = self.shapes.iter().map(|s| s.bounds());
+        t.chain(s).chain(q).fold(Aabb::EMPTY, Aabb::union)
     }
 
     /// The bounds the standard ray sets are derived from (see [`Scene::reference_bounds`]).
@@ -109,7 +117,8 @@ impl Scene {
     }
 
     /// Checks what every index relies on: at least one primitive, finite coordinates, spheres
-    /// with a finite positive radius, and fewer than `u32::MAX` primitives.
+    /// with a finite positive radius, and fewer than `u32::MAX` primitives (shapes are checked
+    /// by their constructors).
     pub fn validate(&self) -> Result<(), SceneError> {
         if self.is_empty() {
             return Err(SceneError::Empty(self.name.clone()));
@@ -155,6 +164,7 @@ impl Scene {
         SceneGeometry {
             triangles: Arc::from(self.triangles.as_slice()),
             spheres: Arc::from(self.spheres.as_slice()),
+            shapes: Arc::from(self.shapes.as_slice()),
         }
     }
 
@@ -181,19 +191,17 @@ impl Scene {
         let i = prim as usize;
         match i.checked_sub(self.triangles.len()) {
             None => self.materials.triangle(i),
-            Some(s) => self.materials.sphere(s),
+            Some(s) if s < self.spheres.len() => self.materials.sphere(s),
+            // Shapes take the default material (scene files give shapes no material yet).
+            Some(_) => &Material::DEFAULT,
         }
     }
 
     /// Unit geometric normal of primitive `prim` at the surface point `p` (a triangle's from its
-    /// winding, a sphere's outward); for shading the final hit only.
+    /// winding, a sphere's and a shape's outward); for shading the final hit only.
     #[inline]
     pub fn normal(&self, prim: u32, p: Vec3A) -> Vec3A {
-        let i = prim as usize;
-        match self.triangles.get(i) {
-            Some(t) => t.normal(),
-            None => self.spheres[i - self.triangles.len()].normal_at(p),
-        }
+        geometry::normal_of(&self.triangles, &self.spheres, &self.shapes, prim, p)
     }
 
     /// The scene's lights, or one default light above the front-right of the bounds when it has

@@ -120,7 +120,7 @@ pub fn measure(
     let tris: Vec<Triangle> = ground.iter().chain(&occluder).copied().collect();
     let geom = SceneGeometry {
         triangles: Arc::from(tris.as_slice()),
-        spheres: Arc::from(Vec::new()),
+        ..SceneGeometry::default()
     };
     let index = build_index(
         &IndexSpec::named("brute"),

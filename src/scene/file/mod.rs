@@ -1,12 +1,15 @@
-//! Scene files in TOML: OBJ meshes and generators placed by transforms, spheres, a camera,
-//! point and area lights, and materials per object (format in [`schema`]).
+//! Scene files in TOML: OBJ meshes and generators placed by transforms, spheres, shapes, a
+//! camera, point and area lights, and materials per object (format in [`schema`] and
+//! [`shape_schema`]).
 //!
-//! Primitive ids: all triangles, then all spheres. Within each kind, objects contribute in the
-//! order their tables appear in the file (`[[mesh]]` and `[[generator]]` tables interleaved as
-//! written; a generator's spheres, e.g. from `spheres` or `mixed`, sit among the `[[sphere]]`
-//! tables at the generator's place), and each object's primitives keep their own order.
+//! Primitive ids: all triangles, then all spheres, then all shapes. Within each kind, objects
+//! contribute in the order their tables appear in the file (`[[mesh]]` and `[[generator]]`
+//! tables interleaved as written; a generator's spheres and shapes, e.g. from `spheres`, `mixed`
+//! or `shapes`, sit among the `[[sphere]]` and `[[shape]]` tables at the generator's place), and
+//! each object's primitives keep their own order.
 
 pub mod schema;
+pub mod shape_schema;
 
 use super::generators::{DEFAULT_SEED, DEFAULT_SIZE, GeneratorSpec};
 use super::transform::{Transform, TransformError};
@@ -16,6 +19,7 @@ use glam::Vec3A;
 use schema::{
     GeneratorEntry, MaterialRef, MeshEntry, RotateSpec, ScaleSpec, SceneFile, SphereEntry,
 };
+use shape_schema::ShapeEntry;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -24,6 +28,7 @@ enum Object<'a> {
     Mesh(&'a MeshEntry),
     Generator(&'a GeneratorEntry),
     Sphere(&'a SphereEntry),
+    Shape(&'a ShapeEntry),
 }
 
 /// Loads a `.toml` scene file. Every error names the file and, for an object, its line.
@@ -55,10 +60,16 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
             .iter()
             .map(|s| (s.span().start, Object::Sphere(s.get_ref()))),
     );
+    objects.extend(
+        file.shapes
+            .iter()
+            .map(|s| (s.span().start, Object::Shape(s.get_ref()))),
+    );
     objects.sort_by_key(|(start, _)| *start);
     if objects.is_empty() {
         return Err(bad(
-            "the scene is empty: add at least one [[mesh]], [[generator]] or [[sphere]]".into(),
+            "the scene is empty: add at least one [[mesh]], [[generator]], [[sphere]] or [[shape]]"
+                .into(),
         ));
     }
 
@@ -114,6 +125,9 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 for s in &generated.spheres {
                     scene.spheres.push(t.sphere(s).map_err(|e| at(&what, &e))?);
                 }
+                for s in &generated.shapes {
+                    scene.shapes.push(t.shape(s).map_err(|e| at(&what, &e))?);
+                }
             }
             Object::Sphere(s) => {
                 let ok = s.center.iter().all(|c| c.is_finite())
@@ -135,6 +149,16 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                     Vec3A::from(s.center),
                     s.radius,
                 ));
+            }
+            Object::Shape(s) => {
+                let what = format!("[[shape]] kind = \"{}\"", s.kind());
+                let local = s.local_shape();
+                let local = local.map_err(|e| at(&what, &e))?;
+                let (scale, rotate, translate) = s.placement();
+                let t = transform(scale, rotate, translate).map_err(|e| at(&what, &e))?;
+                scene
+                    .shapes
+                    .push(t.shape(&local).map_err(|e| at(&what, &e))?);
             }
         }
     }

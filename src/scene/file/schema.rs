@@ -45,6 +45,12 @@
 //! edge2 = [0, 0, 1]
 //! intensity = [1, 1, 1]                  # default white; the total over the rectangle
 //! samples = 4                            # strata per edge (4 x 4 shadow rays); default 4
+//!
+//! [[shape]]                              # box, polygons, cylinder, cone, ellipsoid
+//! kind = "cylinder"                      # keys per kind: see shape_schema
+//! base = [0, 0, 0]
+//! top = [0, 1, 0]
+//! radius = 0.2
 //! ```
 
 use crate::scene::{AreaLight, CameraSpec, Material, PointLight};
@@ -72,6 +78,8 @@ pub struct SceneFile {
     pub materials: BTreeMap<String, Material>,
     #[serde(default, rename = "area_light")]
     pub area_lights: Vec<AreaLight>,
+    #[serde(default, rename = "shape")]
+    pub shapes: Vec<Spanned<super::shape_schema::ShapeEntry>>,
 }
 
 /// An object's `material`: the name of a `[material.NAME]` table, or an inline table.

@@ -5,11 +5,13 @@
 
 mod icosphere;
 mod random;
+mod shapes;
 mod spec;
 mod surfaces;
 
 pub use icosphere::{icosphere, icosphere_mesh};
 pub use random::{slivers, sphere_field, triangle_soup};
+pub use shapes::shape_field;
 pub use spec::{GeneratorSpec, MAX_GENERATED};
 pub use surfaces::{flat, level_for, room, teapot_in_stadium, terrain};
 
@@ -27,6 +29,7 @@ pub const GENERATOR_NAMES: &[&str] = &[
     "room",
     "flat",
     "mixed",
+    "shapes",
 ];
 
 /// Names accepted by [`builtin`]: every generator, at its default size.
@@ -84,6 +87,7 @@ pub fn generate(name: &str, n: usize, seed: u64) -> Option<Scene> {
             s.spheres = sphere_field(n / 2, seed);
             s
         }
+        "shapes" => shape_field(name, n, seed),
         _ => return None,
     })
 }

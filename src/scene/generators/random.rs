@@ -4,7 +4,7 @@ use crate::geometry::{Sphere, Triangle};
 use crate::rays::SplitMix64;
 use glam::Vec3A;
 
-fn point(rng: &mut SplitMix64) -> Vec3A {
+pub(super) fn point(rng: &mut SplitMix64) -> Vec3A {
     Vec3A::new(
         rng.next_unit() as f32,
         rng.next_unit() as f32,
@@ -12,7 +12,7 @@ fn point(rng: &mut SplitMix64) -> Vec3A {
     )
 }
 
-fn unit_vector(rng: &mut SplitMix64) -> Vec3A {
+pub(super) fn unit_vector(rng: &mut SplitMix64) -> Vec3A {
     let w = 1.0 - 2.0 * rng.next_unit();
     let phi = std::f64::consts::TAU * rng.next_unit();
     let s = (1.0 - w * w).max(0.0).sqrt();

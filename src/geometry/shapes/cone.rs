@@ -1,0 +1,286 @@
+//! Finite, capped, arbitrarily oriented right circular cones.
+
+use super::cylinder::RIM_SLACK;
+use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
+use crate::geometry::{Aabb, Ray};
+use glam::Vec3A;
+
+/// The solid cone with its tip at `apex` and a flat circular base of radius `radius` at
+/// `apex + axis * height`.
+///
+/// Invariants: finite `apex`, unit `axis` (from the apex to the base), `height` and `radius`
+/// finite and `> 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cone {
+    apex: Vec3A,
+    axis: Vec3A,
+    height: f32,
+    radius: f32,
+    /// `(radius / height)^2`: the squared slope of the side.
+    k2: f32,
+    /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
+    bounds: Aabb,
+}
+
+impl Cone {
+    /// The cone from its base centre to its apex.
+    pub fn new(base: Vec3A, apex: Vec3A, radius: f32) -> Result<Cone, ShapeError> {
+        if !(base.is_finite() && apex.is_finite()) {
+            return Err(ShapeError::NonFinite("cone base and apex"));
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(ShapeError::NotPositive("cone radius", radius));
+        }
+        let height = (base - apex).length();
+        if !(height.is_finite() && height > 0.0) {
+            return Err(ShapeError::ZeroLength("cone"));
+        }
+        let k = radius / height;
+        let mut shape = Cone {
+            apex,
+            axis: (base - apex) / height,
+            height,
+            radius,
+            k2: k * k,
+            bounds: Aabb::EMPTY,
+        };
+        shape.bounds = shape.compute_bounds();
+        Ok(shape)
+    }
+
+    pub fn apex(&self) -> Vec3A {
+        self.apex
+    }
+
+    pub fn base(&self) -> Vec3A {
+        self.apex + self.axis * self.height
+    }
+
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// The base disc's bounds grown by the apex.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn compute_bounds(&self) -> Aabb {
+        let b = padded_bounds(self.base(), disc_half_extent(self.axis, self.radius));
+        b.union(padded_bounds(self.apex, Vec3A::ZERO))
+    }
+
+    /// Outward unit normal: the base's when `p` is nearer the base plane than the side, else
+    /// the side's, `radial * height - axis * radius` normalized (perpendicular to the line from
+    /// the apex to the rim).
+    pub fn normal_at(&self, p: Vec3A) -> Vec3A {
+        let q = p - self.apex;
+        let z = q.dot(self.axis);
+        let radial = q - self.axis * z;
+        let r = radial.length();
+        // Distance to the side line in the axial half-plane of p.
+        let to_side = (r * self.height - z * self.radius).abs() / self.height.hypot(self.radius);
+        if (z - self.height).abs() < to_side {
+            return self.axis;
+        }
+        let u = radial.normalize_or_zero();
+        (u * self.height - self.axis * self.radius).normalize_or_zero()
+    }
+}
+
+/// The first crossing of the side or the base.
+///
+/// Side: with `o`, `d` relative to the apex split into axial parts `oz`, `dz` and radial parts
+/// `op`, `dp`, the cone is `|op + t dp|^2 = k2 (oz + t dz)^2`, i.e. `a t^2 + 2 b t + c = 0` with
+/// `a = |dp|^2 - k2 dz^2`, `b = op.dp - k2 oz dz`, `c = |op|^2 - k2 oz^2`. The discriminant is
+/// not formed as `b^2 - a c` (which cancels catastrophically) but by Lagrange's identity as
+/// `k2 |oz dp - dz op|^2 - |op x dp|^2`: two squared lengths, the cone's counterpart of the
+/// sphere's `r^2 - |l|^2`. The roots are `c/q` and `q/a` with `q = -(b + sign(b) sqrt(disc))`
+/// (for `a = 0`, a ray parallel to a side line, `c/q` is the single root). Roots count for
+/// `0 <= z <= height` (the other nappe and the part beyond the base are not the solid's).
+/// Base: the plane `z = height` within the radius.
+#[inline]
+pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
+    let o = ray.origin - c.apex;
+    let (oz, dz) = (o.dot(c.axis), ray.dir.dot(c.axis));
+    let (op, dp) = (o - c.axis * oz, ray.dir - c.axis * dz);
+    let a = dp.dot(dp) - c.k2 * dz * dz;
+    let b = op.dot(dp) - c.k2 * oz * dz;
+    let cc = op.dot(op) - c.k2 * oz * oz;
+    let disc = c.k2 * (dp * oz - op * dz).length_squared() - op.cross(dp).length_squared();
+    let (mut s0, mut s1) = (f32::NAN, f32::NAN);
+    if disc >= 0.0 {
+        let q = -(b + disc.sqrt().copysign(b));
+        if q != 0.0 {
+            (s0, s1) = (cc / q, q / a);
+        } else if a != 0.0 {
+            // b == 0 and disc == 0: the double root -b/a = 0.
+            (s0, s1) = (0.0, 0.0);
+        }
+    }
+    // Both range tests are widened by a bound on their own rounding, so a ray through the rim
+    // is taken by the side or the base and never slips between them.
+    let (op_len, dp_len) = (op.length(), dp.length());
+    let on_side = |t: f32| {
+        let z = oz + t * dz;
+        let slack = RIM_SLACK * (oz.abs() + (t * dz).abs());
+        if z >= -slack && z <= c.height + slack {
+            t
+        } else {
+            f32::NAN
+        }
+    };
+    let on_base = |t: f32| {
+        let reach = c.radius + RIM_SLACK * (op_len + t.abs() * dp_len);
+        if (op + dp * t).length_squared() <= reach * reach {
+            t
+        } else {
+            f32::NAN
+        }
+    };
+    let b0 = if dz != 0.0 {
+        on_base((c.height - oz) / dz)
+    } else {
+        f32::NAN
+    };
+    first_hit([on_side(s0), on_side(s1), b0], ray, t_max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// Apex at the origin, base radius 1 at z = 2 (slope 1/2).
+    fn up_z() -> Cone {
+        Cone::new(Vec3A::new(0.0, 0.0, 2.0), Vec3A::ZERO, 1.0).unwrap()
+    }
+
+    fn hit(c: &Cone, o: [f32; 3], d: [f32; 3]) -> Option<f32> {
+        intersect(
+            c,
+            &Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap(),
+            f32::INFINITY,
+        )
+    }
+
+    fn close(a: Option<f32>, b: f32) -> bool {
+        a.is_some_and(|a| (a - b).abs() < 1e-5)
+    }
+
+    #[test]
+    fn side_base_inside_and_misses() {
+        let c = up_z();
+        // Horizontal ray at z = 1 (radius 0.5 there) from x = -3: t = 2.5.
+        assert!(close(hit(&c, [-3.0, 0.0, 1.0], [1.0, 0.0, 0.0]), 2.5));
+        assert!(close(hit(&c, [-3.0, 0.0, 1.0], [2.0, 0.0, 0.0]), 1.25));
+        // Down the axis from above: the base at z = 2.
+        assert!(close(hit(&c, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]), 3.0));
+        // Up the axis from below: the apex at t = 1.
+        assert!(close(hit(&c, [0.0, 0.0, -1.0], [0.0, 0.0, 1.0]), 1.0));
+        // Inside: out through the side (z = 1, x = 0.5) or the base.
+        assert!(close(hit(&c, [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]), 0.5));
+        assert!(close(hit(&c, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), 1.0));
+        // The mirrored nappe below the apex and the region beyond the base are empty.
+        assert_eq!(hit(&c, [-3.0, 0.0, -1.0], [1.0, 0.0, 0.0]), None);
+        assert_eq!(hit(&c, [-3.0, 0.0, 2.5], [1.0, 0.0, 0.0]), None);
+        assert_eq!(hit(&c, [-3.0, 0.0, 1.0], [-1.0, 0.0, 0.0]), None);
+        // A ray parallel to a side line (a = 0): from (-1, 0, 0) along (1, 0, 2) it meets the
+        // other side line x = -z/2 at z = 1, t = 0.5.
+        assert!(close(hit(&c, [-1.0, 0.0, 0.0], [1.0, 0.0, 2.0]), 0.5));
+        // Grazing: the line y = 0.5 at z = 1 touches the side at (0, 0.5, 1), a double root.
+        assert!(close(hit(&c, [-3.0, 0.5, 1.0], [1.0, 0.0, 0.0]), 3.0));
+        // Through the rim: from (2, 0, 3) toward (1, 0, 2), t = 1.
+        assert!(close(hit(&c, [2.0, 0.0, 3.0], [-1.0, 0.0, -1.0]), 1.0));
+    }
+
+    #[test]
+    fn oblique_and_far_away() {
+        // Apex (1,1,1), base at the origin with radius 0.5; a ray across the middle.
+        let c = Cone::new(Vec3A::ZERO, Vec3A::ONE, 0.5).unwrap();
+        let mid = Vec3::splat(0.5);
+        let d = Vec3::new(1.0, -1.0, 0.0).normalize();
+        // Radius at the middle is 0.25.
+        assert!(close(hit(&c, (mid - d * 3.0).into(), d.into()), 2.75));
+        // A thin cone 1e4 away.
+        let far = Cone::new(
+            Vec3A::new(0.0, 0.0, 1.0e4),
+            Vec3A::new(0.0, 0.0, 1.0e4 + 1.0),
+            0.01,
+        )
+        .unwrap();
+        let t = hit(&far, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
+        assert!((t - 1.0e4).abs() <= 1e-3, "{t}");
+        let t = hit(&far, [-1.0, 0.0, 1.0e4 + 0.5], [1.0, 0.0, 0.0]).unwrap();
+        assert!((t - 0.995).abs() <= 2e-3, "{t}");
+    }
+
+    /// Rays aimed exactly at points of the base rim from outside never slip between the side
+    /// and base tests (unless the exact line only touches the rim).
+    #[test]
+    fn rim_is_watertight() {
+        let c = Cone::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
+        let (u, v) = c.axis.any_orthonormal_pair();
+        let mut s = 5u64;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 40) as f32) / (1u64 << 24) as f32
+        };
+        let (o64, w, h, r) = (
+            c.apex.as_dvec3(),
+            c.axis.as_dvec3(),
+            c.height as f64,
+            c.radius as f64,
+        );
+        let penetration = |ray: &Ray| {
+            let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+            (0..=2000)
+                .map(|k| {
+                    let q = o + d * (0.99 + 0.02 * k as f64 / 2000.0) - o64;
+                    let z = q.dot(w);
+                    let radial = (q - w * z).length();
+                    (r * z / h - radial).min(h - z)
+                })
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let mut slipped = Vec::new();
+        for _ in 0..20000 {
+            let a = std::f32::consts::TAU * next();
+            let rim = c.base() + (u * a.cos() + v * a.sin()) * c.radius;
+            let o = Vec3A::new(next(), next(), next()) * 8.0 - 4.0;
+            if c.bounds().contains(o) {
+                continue;
+            }
+            let ray = Ray::infinite(o.into(), (rim - o).into()).unwrap();
+            match intersect(&c, &ray, f32::INFINITY) {
+                Some(t) if t <= 1.0 + 1e-4 => {}
+                other if penetration(&ray) > 1e-6 => slipped.push((ray, other)),
+                _ => {}
+            }
+        }
+        assert!(
+            slipped.is_empty(),
+            "{} slipped, first {:?}",
+            slipped.len(),
+            slipped[0]
+        );
+    }
+
+    #[test]
+    fn bounds_and_normals() {
+        let c = up_z();
+        let b = c.bounds();
+        assert!((b.min - Vec3A::new(-1.0, -1.0, 0.0)).abs().max_element() < 1e-5);
+        assert!((b.max - Vec3A::new(1.0, 1.0, 2.0)).abs().max_element() < 1e-5);
+        assert_eq!(c.normal_at(Vec3A::new(0.2, 0.1, 2.0)), Vec3A::Z);
+        let n = c.normal_at(Vec3A::new(0.5, 0.0, 1.0));
+        assert!(
+            (n - Vec3A::new(2.0, 0.0, -1.0).normalize()).length() < 1e-6,
+            "{n:?}"
+        );
+        assert!(Cone::new(Vec3A::ONE, Vec3A::ONE, 1.0).is_err());
+        assert!(Cone::new(Vec3A::ZERO, Vec3A::ONE, -1.0).is_err());
+    }
+}

@@ -1,0 +1,287 @@
+//! `[[shape]]` tables of the scene format: one primitive of the kinds in
+//! [`crate::geometry::shapes`], chosen by `kind`, given in its own coordinates and placed by the
+//! same `scale`, `rotate`, `translate` keys as `[[mesh]]`. Unknown keys are rejected.
+//!
+//! ```toml
+//! [[shape]]
+//! kind = "box"                         # axis-aligned before the transform
+//! center = [0, 0, 0]
+//! half_extents = [0.5, 0.2, 0.1]
+//! rotate = { axis = [0, 1, 0], degrees = 30 }
+//!
+//! [[shape]]
+//! kind = "convex_polygon"              # or "concave_polygon"; planar, in order
+//! vertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+//!
+//! [[shape]]
+//! kind = "cylinder"                    # capped; uniform scale only
+//! base = [0, 0, 0]
+//! top = [0, 1, 0]
+//! radius = 0.2
+//!
+//! [[shape]]
+//! kind = "cone"                        # capped at the base; uniform scale only
+//! base = [0, 0, 0]
+//! apex = [0, 1, 0]
+//! radius = 0.3
+//!
+//! [[shape]]
+//! kind = "ellipsoid"                   # axis-aligned radii before the transform
+//! center = [0, 0, 0]
+//! radii = [0.3, 0.2, 0.1]
+//! scale = 2
+//! ```
+
+use super::schema::{RotateSpec, ScaleSpec};
+use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
+use crate::geometry::{Shape, ShapeError};
+use glam::{Mat3A, Vec3A};
+use serde::Deserialize;
+
+/// `[[shape]]`: one primitive, by `kind`.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ShapeEntry {
+    Box(BoxEntry),
+    ConvexPolygon(PolygonEntry),
+    ConcavePolygon(PolygonEntry),
+    Cylinder(CylinderEntry),
+    Cone(ConeEntry),
+    Ellipsoid(EllipsoidEntry),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxEntry {
+    pub center: [f32; 3],
+    pub half_extents: [f32; 3],
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PolygonEntry {
+    pub vertices: Vec<[f32; 3]>,
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderEntry {
+    pub base: [f32; 3],
+    pub top: [f32; 3],
+    pub radius: f32,
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConeEntry {
+    pub base: [f32; 3],
+    pub apex: [f32; 3],
+    pub radius: f32,
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EllipsoidEntry {
+    pub center: [f32; 3],
+    pub radii: [f32; 3],
+    pub scale: Option<ScaleSpec>,
+    pub rotate: Option<RotateSpec>,
+    pub translate: Option<[f64; 3]>,
+}
+
+/// The `scale`, `rotate` and `translate` keys of an entry.
+pub type Placement = (Option<ScaleSpec>, Option<RotateSpec>, Option<[f64; 3]>);
+
+impl ShapeEntry {
+    /// The `kind` as written in the file.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ShapeEntry::Box(_) => "box",
+            ShapeEntry::ConvexPolygon(_) => "convex_polygon",
+            ShapeEntry::ConcavePolygon(_) => "concave_polygon",
+            ShapeEntry::Cylinder(_) => "cylinder",
+            ShapeEntry::Cone(_) => "cone",
+            ShapeEntry::Ellipsoid(_) => "ellipsoid",
+        }
+    }
+
+    /// The shape in its own coordinates (before the transform), validated.
+    pub fn local_shape(&self) -> Result<Shape, ShapeError> {
+        let v = |a: [f32; 3]| Vec3A::from(a);
+        Ok(match self {
+            ShapeEntry::Box(b) => {
+                Shape::Box(Obb::new(v(b.center), v(b.half_extents), Mat3A::IDENTITY)?)
+            }
+            ShapeEntry::ConvexPolygon(p) => {
+                Shape::ConvexPolygon(Polygon::convex(p.vertices.iter().map(|&a| v(a)).collect())?)
+            }
+            ShapeEntry::ConcavePolygon(p) => {
+                Shape::ConcavePolygon(Polygon::new(p.vertices.iter().map(|&a| v(a)).collect())?)
+            }
+            ShapeEntry::Cylinder(c) => {
+                Shape::Cylinder(Cylinder::new(v(c.base), v(c.top), c.radius)?)
+            }
+            ShapeEntry::Cone(c) => Shape::Cone(Cone::new(v(c.base), v(c.apex), c.radius)?),
+            ShapeEntry::Ellipsoid(e) => {
+                Shape::Ellipsoid(Ellipsoid::new(v(e.center), v(e.radii), Mat3A::IDENTITY)?)
+            }
+        })
+    }
+
+    /// The entry's transform keys.
+    pub fn placement(&self) -> Placement {
+        match self {
+            ShapeEntry::Box(e) => (e.scale, e.rotate, e.translate),
+            ShapeEntry::ConvexPolygon(e) | ShapeEntry::ConcavePolygon(e) => {
+                (e.scale, e.rotate, e.translate)
+            }
+            ShapeEntry::Cylinder(e) => (e.scale, e.rotate, e.translate),
+            ShapeEntry::Cone(e) => (e.scale, e.rotate, e.translate),
+            ShapeEntry::Ellipsoid(e) => (e.scale, e.rotate, e.translate),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::geometry::{Ray, Shape};
+    use crate::scene::file::load_scene_file;
+    use crate::scene::{Scene, SceneError};
+    use glam::{Vec3, Vec3A};
+
+    fn load(toml: &str) -> Result<Scene, SceneError> {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("scene.toml");
+        std::fs::write(&path, toml).unwrap();
+        load_scene_file(&path)
+    }
+
+    const ALL_KINDS: &str = r#"
+[[shape]]
+kind = "box"
+center = [1, 0, 0]
+half_extents = [1, 1, 1]
+scale = [2, 3, 4]
+rotate = { axis = [0, 0, 1], degrees = 90 }
+translate = [0, 0, 1]
+[[sphere]]
+center = [0, 0, 9]
+radius = 1
+[[shape]]
+kind = "convex_polygon"
+vertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+translate = [0, 0, -5]
+[[shape]]
+kind = "concave_polygon"
+vertices = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]
+[[shape]]
+kind = "cylinder"
+base = [0, 0, 0]
+top = [0, 1, 0]
+radius = 0.5
+scale = 2
+[[shape]]
+kind = "cone"
+base = [0, 0, 0]
+apex = [0, 1, 0]
+radius = 0.5
+[[shape]]
+kind = "ellipsoid"
+center = [0, 0, 0]
+radii = [1, 2, 3]
+scale = [1, 1, 2]
+[[generator]]
+name = "shapes"
+n = 16
+translate = [10, 0, 0]
+"#;
+
+    #[test]
+    fn every_kind_in_file_order_with_transforms() {
+        let s = load(ALL_KINDS).unwrap();
+        let kinds: Vec<_> = s.shapes.iter().map(Shape::kind).collect();
+        assert_eq!(
+            kinds[..6],
+            [
+                "box",
+                "convex_polygon",
+                "concave_polygon",
+                "cylinder",
+                "cone",
+                "ellipsoid"
+            ]
+        );
+        // The generator's shapes follow, moved by its transform.
+        let g = crate::scene::generators::generate("shapes", 16, 1).unwrap();
+        assert_eq!(s.shapes.len(), 6 + g.shapes.len());
+        assert_eq!(s.spheres.len(), 1 + g.spheres.len());
+        assert!(
+            (s.shapes[6].bounds().center()
+                - g.shapes[0].bounds().center()
+                - Vec3A::new(10.0, 0.0, 0.0))
+            .length()
+                < 1e-5
+        );
+        // The box: scaled to half-extents (2, 3, 4), turned, centred at (0, 2, 1).
+        let down = Ray::infinite(Vec3::new(0.0, 2.0, 9.0), Vec3::NEG_Z).unwrap();
+        let t = s.shapes[0].intersect(&down, f32::INFINITY).unwrap();
+        assert!((t - 4.0).abs() < 1e-5, "{t}");
+        // The cylinder is twice as tall: a ray along +x at y = 1.9 hits its side at x = -1.
+        let across = Ray::infinite(Vec3::new(-5.0, 1.9, 0.0), Vec3::X).unwrap();
+        assert!((s.shapes[3].intersect(&across, f32::INFINITY).unwrap() - 4.0).abs() < 1e-5);
+        // The ellipsoid's z radius is 6 after the scale.
+        let bz = s.shapes[5].bounds();
+        assert!((bz.max.z - 6.0).abs() < 1e-4, "{bz:?}");
+    }
+
+    #[test]
+    fn bad_shapes_name_what_to_fix() {
+        for (toml, expect) in [
+            ("[[shape]]\nkind = \"torus\"\n", "unknown variant `torus`"),
+            (
+                "[[shape]]\nkind = \"cone\"\nbase = [0,0,0]\napex = [0,1,0]\nradius = 1\ncolour = 2\n",
+                "unknown field `colour`",
+            ),
+            (
+                "[[shape]]\nkind = \"cone\"\nbase = [0,0,0]\napex = [0,0,0]\nradius = 1\n",
+                "distinct end points",
+            ),
+            (
+                "[[shape]]\nkind = \"cylinder\"\nbase = [0,0,0]\ntop = [0,1,0]\nradius = 1\nscale = [1,2,1]\n",
+                "not uniform",
+            ),
+            (
+                "[[shape]]\nkind = \"box\"\ncenter = [0,0,0]\nhalf_extents = [1,0,1]\n",
+                "half-extent",
+            ),
+            (
+                "[[shape]]\nkind = \"convex_polygon\"\nvertices = [[0,0,0],[2,0,0],[2,1,0],[1,1,0],[1,2,0],[0,2,0]]\n",
+                "not convex",
+            ),
+            (
+                "\n[[shape]]\nkind = \"concave_polygon\"\nvertices = [[0,0,0],[1,0,0],[1,1,1],[0,1,0]]\n",
+                "line 2, [[shape]] kind = \"concave_polygon\"",
+            ),
+            (
+                "[[shape]]\nkind = \"ellipsoid\"\ncenter = [0,0,0]\nradii = [1,1,1]\nscale = 0\n",
+                "non-zero",
+            ),
+        ] {
+            let e = load(toml).expect_err(toml);
+            let msg = e.to_string();
+            assert!(msg.contains(expect), "expected '{expect}' in: {msg}");
+        }
+    }
+}
