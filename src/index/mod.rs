@@ -5,11 +5,13 @@
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
 mod brute;
+pub mod bvh;
 pub mod mailbox;
 mod registry;
 mod stats;
 
 pub use brute::BruteForce;
+pub use bvh::Bvh;
 pub use registry::{
     BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,
 };
