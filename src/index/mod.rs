@@ -7,11 +7,13 @@
 mod brute;
 pub mod bvh;
 pub mod mailbox;
+pub mod obvhs_peer;
 mod registry;
 mod stats;
 
 pub use brute::BruteForce;
 pub use bvh::Bvh;
+pub use obvhs_peer::{ObvhsBvh2, ObvhsCwBvh};
 pub use registry::{
     BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,
 };

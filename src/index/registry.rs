@@ -2,7 +2,9 @@
 //! [`TraceIndex`] that the harness, the CLI and reports use. The virtual call happens once per
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
-use super::{BruteForce, BuildError, Bvh, Counters, Index, IndexInfo, NoStats};
+use super::{
+    BruteForce, BuildError, Bvh, Counters, Index, IndexInfo, NoStats, ObvhsBvh2, ObvhsCwBvh,
+};
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
 use rayon::prelude::*;
@@ -31,6 +33,14 @@ const REGISTRY: &[Entry] = &[
     Entry {
         name: "bvh",
         build: build_dyn::<Bvh>,
+    },
+    Entry {
+        name: "obvhs-bvh2",
+        build: build_dyn::<ObvhsBvh2>,
+    },
+    Entry {
+        name: "obvhs-cwbvh",
+        build: build_dyn::<ObvhsCwBvh>,
     },
 ];
 

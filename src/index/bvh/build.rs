@@ -44,7 +44,8 @@ enum Tree {
 pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
     assert!(!refs.is_empty(), "the caller rejects empty scenes");
     let parallel = rayon::current_num_threads() > 1;
-    let tree = subtree(&mut refs, 0, 1, cfg, parallel);
+    let boxes = bounds_and_centroids(&refs);
+    let tree = subtree(&mut refs, boxes, 0, 1, cfg, parallel);
     let mut out = Built {
         nodes: Vec::with_capacity(2 * refs.len()),
         prim_ids: refs.iter().map(|r| r.id).collect(),
@@ -55,9 +56,18 @@ pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
     out
 }
 
-fn subtree(refs: &mut [PrimRef], first: u32, level: u32, cfg: &BuildConfig, par: bool) -> Tree {
+/// Builds the subtree over `refs`, whose bounds and centroid bounds are `boxes`; its primitives
+/// start at slot `first`; `level` counts from 1 at the root.
+fn subtree(
+    refs: &mut [PrimRef],
+    boxes: (Aabb, Aabb),
+    first: u32,
+    level: u32,
+    cfg: &BuildConfig,
+    par: bool,
+) -> Tree {
     let n = refs.len();
-    let (bounds, centroids) = bounds_and_centroids(refs);
+    let (bounds, centroids) = boxes;
     let leaf = Tree::Leaf {
         bounds,
         first,
@@ -66,36 +76,41 @@ fn subtree(refs: &mut [PrimRef], first: u32, level: u32, cfg: &BuildConfig, par:
     if n == 1 || level == MAX_DEPTH {
         return leaf;
     }
+    // (cost, mid, child boxes if the splitter computed them)
     let split = match cfg.split {
-        SplitMethod::Binned => binned::split(refs, &centroids, cfg.bins),
-        SplitMethod::Sweep => sweep::split(refs),
+        // Nodes with fewer primitives than bins use one bin per primitive: the sweep over empty
+        // bins would cost more than the binning.
+        SplitMethod::Binned => binned::split(refs, &centroids, cfg.bins.min(n as u32).max(2))
+            .map(|s| (s.cost, s.mid, Some((s.left, s.right)))),
+        SplitMethod::Sweep => sweep::split(refs).map(|(cost, mid)| (cost, mid, None)),
     };
     let small = n <= cfg.leaf_size as usize;
-    let mid = match split {
-        Some((cost, mid)) => {
+    let (mid, children) = match split {
+        Some((cost, mid, children)) => {
             // SAH in units of one primitive test: leaf n, split cost_ratio + expected tests.
             let area = bounds.surface_area();
             let expected = if area > 0.0 { cost / area } else { 0.0 };
             if small && n as f32 <= cfg.cost_ratio + expected {
                 return leaf;
             }
-            mid
+            (mid, children)
         }
         // Coincident centroids: no plane separates them; halve by count if too many.
         None if small => return leaf,
-        None => n / 2,
+        None => (n / 2, None),
     };
     let (l, r) = refs.split_at_mut(mid);
+    let (lb, rb) = children.unwrap_or_else(|| (bounds_and_centroids(l), bounds_and_centroids(r)));
     let right_first = first + mid as u32;
     let (a, b) = if par && n >= PARALLEL_MIN {
         rayon::join(
-            || subtree(l, first, level + 1, cfg, par),
-            || subtree(r, right_first, level + 1, cfg, par),
+            || subtree(l, lb, first, level + 1, cfg, par),
+            || subtree(r, rb, right_first, level + 1, cfg, par),
         )
     } else {
         (
-            subtree(l, first, level + 1, cfg, par),
-            subtree(r, right_first, level + 1, cfg, par),
+            subtree(l, lb, first, level + 1, cfg, par),
+            subtree(r, rb, right_first, level + 1, cfg, par),
         )
     };
     Tree::Inner {

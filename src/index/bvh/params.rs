@@ -15,7 +15,8 @@ pub const MAX_COST_RATIO: f32 = 1000.0;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SplitMethod {
-    /// Binned SAH: centroids binned into `bins` buckets per axis, `bins - 1` candidate planes.
+    /// Binned SAH: centroids binned into `bins` buckets per axis, `bins - 1` candidate planes
+    /// (nodes of `n < bins` primitives use `n` bins).
     Binned,
     /// Full sweep SAH: every split between centroid-sorted primitives on every axis.
     Sweep,
