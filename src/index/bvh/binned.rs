@@ -92,12 +92,12 @@ pub fn split(refs: &mut [PrimRef], centroids: &Aabb, bins: u32) -> Option<Split>
     // are `grid[(2 * a + s) * bins..][..bins]`.
     let mut grid = vec![EMPTY_BIN; 6 * bins];
     let mut add = |set: usize, r: &PrimRef| {
-        let k = bins_of(r.centroid, min, scale, last);
+        let k = bins_of(r.centroid(), min, scale, last);
         for (a, k) in k.into_iter().enumerate() {
             let b = &mut grid[(2 * a + set) * bins + k];
             b.count += 1;
-            b.min = b.min.min(r.bounds.min);
-            b.max = b.max.max(r.bounds.max);
+            b.min = b.min.min(r.min());
+            b.max = b.max.max(r.max());
         }
     };
     let mut pairs = refs.chunks_exact(2);
@@ -148,7 +148,8 @@ pub fn split(refs: &mut [PrimRef], centroids: &Aabb, bins: u32) -> Option<Split>
         }
     }
     let (cost, a, plane) = best?;
-    let (mid, left, right) = partition(refs, |r| bins_of(r.centroid, min, scale, last)[a] < plane);
+    let (mid, left, right) =
+        partition(refs, |r| bins_of(r.centroid(), min, scale, last)[a] < plane);
     debug_assert!(mid > 0 && mid < refs.len());
     Some(Split {
         cost,
@@ -170,11 +171,11 @@ fn partition(
     for i in 0..refs.len() {
         let p = refs[i];
         if left(&p) {
-            l = (l.0.union(p.bounds), l.1.grown(p.centroid));
+            l = (l.0.union(p.bounds()), l.1.grown(p.centroid()));
             refs.swap(i, mid);
             mid += 1;
         } else {
-            r = (r.0.union(p.bounds), r.1.grown(p.centroid));
+            r = (r.0.union(p.bounds()), r.1.grown(p.centroid()));
         }
     }
     (mid, l, r)
@@ -187,11 +188,7 @@ mod tests {
 
     fn point_ref(id: u32, x: f32) -> PrimRef {
         let c = Vec3A::new(x, 0.0, 0.0);
-        PrimRef {
-            bounds: Aabb::new(c - 0.01, c + 0.01),
-            centroid: c,
-            id,
-        }
+        PrimRef::new(Aabb::new(c - 0.01, c + 0.01), id)
     }
 
     #[test]
@@ -204,7 +201,7 @@ mod tests {
         assert_eq!(sp.mid, 5);
         assert_eq!(sp.left, bounds_and_centroids(&refs[..5]));
         assert_eq!(sp.right, bounds_and_centroids(&refs[5..]));
-        assert!(refs[..5].iter().all(|r| r.id % 2 == 0));
+        assert!(refs[..5].iter().all(|r| r.id() % 2 == 0));
     }
 
     #[test]

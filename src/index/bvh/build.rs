@@ -48,7 +48,7 @@ pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
     let tree = subtree(&mut refs, boxes, 0, 1, cfg, parallel);
     let mut out = Built {
         nodes: Vec::with_capacity(2 * refs.len()),
-        prim_ids: refs.iter().map(|r| r.id).collect(),
+        prim_ids: refs.iter().map(|r| r.id()).collect(),
         leaves: 0,
         depth: 0,
     };
@@ -154,11 +154,7 @@ mod tests {
             .map(|i| {
                 let f = i as f32;
                 let c = Vec3A::new((f * 0.37).sin() * 10.0, (f * 0.11).cos() * 5.0, f * 0.01);
-                PrimRef {
-                    bounds: Aabb::new(c - 0.1, c + 0.2),
-                    centroid: c,
-                    id: i,
-                }
+                PrimRef::new(Aabb::new(c - 0.1, c + 0.2), i)
             })
             .collect()
     }
@@ -176,7 +172,7 @@ mod tests {
                 assert!(n.count() <= leaf_size);
                 for &id in &built.prim_ids[n.offset() as usize..][..n.count() as usize] {
                     seen[id as usize] += 1;
-                    assert_eq!(b.union(input[id as usize].bounds), b);
+                    assert_eq!(b.union(input[id as usize].bounds()), b);
                 }
             } else {
                 stack.push((i + 1, b));
@@ -226,11 +222,7 @@ mod tests {
         let input: Vec<PrimRef> = (0..100u32)
             .map(|i| {
                 let h = Vec3A::splat(1.0 + i as f32);
-                PrimRef {
-                    bounds: Aabb::new(-h, h),
-                    centroid: Vec3A::ZERO,
-                    id: i,
-                }
+                PrimRef::new(Aabb::new(-h, h), i)
             })
             .collect();
         for p in Preset::ALL {

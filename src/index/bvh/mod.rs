@@ -53,19 +53,16 @@ impl Index for Bvh {
             .map_err(|_| failed(format!("{} primitives exceed u32 ids", geom.len())))?;
         let refs: Vec<PrimRef> = (0..len)
             .into_par_iter()
-            .map(|id| PrimRef {
-                bounds: geom.bounds(id),
-                centroid: geom.centroid(id),
-                id,
-            })
+            .map(|id| PrimRef::new(geom.bounds(id), id))
             .collect();
         if let Some(bad) = refs
             .iter()
-            .find(|r| !(r.bounds.min.is_finite() && r.bounds.max.is_finite()))
+            .find(|r| !(r.min().is_finite() && r.max().is_finite()))
         {
             return Err(failed(format!(
                 "primitive {} has non-finite bounds {:?}: remove NaN or infinite coordinates",
-                bad.id, bad.bounds
+                bad.id(),
+                bad.bounds()
             )));
         }
         let built = build::build(refs, &cfg);

@@ -8,9 +8,9 @@ use crate::geometry::Aabb;
 /// Sorts by centroid on `axis`, ties by id (deterministic).
 fn sort_on(refs: &mut [PrimRef], axis: usize) {
     refs.sort_unstable_by(|a, b| {
-        a.centroid[axis]
-            .total_cmp(&b.centroid[axis])
-            .then(a.id.cmp(&b.id))
+        a.centroid()[axis]
+            .total_cmp(&b.centroid()[axis])
+            .then(a.id().cmp(&b.id()))
     });
 }
 
@@ -30,12 +30,12 @@ pub fn split(refs: &mut [PrimRef]) -> Option<(f32, usize)> {
         sort_on(refs, axis);
         let mut acc = Aabb::EMPTY;
         for i in (1..n).rev() {
-            acc = acc.union(refs[i].bounds);
+            acc = acc.union(refs[i].bounds());
             right_cost[i] = acc.surface_area() * (n - i) as f32;
         }
         let mut acc = Aabb::EMPTY;
         for i in 1..n {
-            acc = acc.union(refs[i - 1].bounds);
+            acc = acc.union(refs[i - 1].bounds());
             let cost = acc.surface_area() * i as f32 + right_cost[i];
             if best.is_none_or(|(c, ..)| cost < c) {
                 best = Some((cost, axis, i));
@@ -61,15 +61,11 @@ mod tests {
         let mut refs: Vec<PrimRef> = (0..9u32)
             .map(|i| {
                 let c = Vec3A::new(0.0, if i < 3 { i as f32 } else { 100.0 + i as f32 }, 0.0);
-                PrimRef {
-                    bounds: Aabb::new(c - 0.5, c + 0.5),
-                    centroid: c,
-                    id: 8 - i,
-                }
+                PrimRef::new(Aabb::new(c - 0.5, c + 0.5), 8 - i)
             })
             .collect();
         let (_, mid) = split(&mut refs).unwrap();
-        let low = |r: &PrimRef| r.centroid.y < 50.0;
+        let low = |r: &PrimRef| r.centroid().y < 50.0;
         let (l, r) = refs.split_at(mid);
         assert!(l.iter().all(low) && !r.iter().any(low) || !l.iter().any(low) && r.iter().all(low));
     }
