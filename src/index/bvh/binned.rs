@@ -59,6 +59,13 @@ fn truncate(v: Vec3A) -> [usize; 3] {
     [v.x as usize, v.y as usize, v.z as usize]
 }
 
+/// Reusable bin storage, so that no node allocates (one per build thread).
+#[derive(Default)]
+pub struct Scratch {
+    grid: Vec<Bin>,
+    right_cost: Vec<f32>,
+}
+
 /// A chosen split: `refs[..mid]` go left, `refs[mid..]` right (both non-empty), with
 /// `cost = area(left) * n_left + area(right) * n_right` and each side's bounds and centroid
 /// bounds (so the children need not scan their primitives again).
@@ -73,7 +80,12 @@ pub struct Split {
 ///
 /// `None` when the centroids coincide on every axis (no plane separates them). `centroids` is
 /// the bounds of the centroids of `refs`; `bins` is in `2..=`[`super::params::BINS`]`.end()`.
-pub fn split(refs: &mut [PrimRef], centroids: &Aabb, bins: u32) -> Option<Split> {
+pub fn split(
+    refs: &mut [PrimRef],
+    centroids: &Aabb,
+    bins: u32,
+    scratch: &mut Scratch,
+) -> Option<Split> {
     let bins = bins as usize;
     let ext = centroids.extent();
     if refs.len() < 2 || ext.max_element() <= 0.0 {
@@ -90,7 +102,9 @@ pub fn split(refs: &mut [PrimRef], centroids: &Aabb, bins: u32) -> Option<Split>
     // Two sets of bins, for even and odd primitives, so that consecutive primitives landing in
     // the same bin do not wait on each other; merged afterwards. Bins of axis `a` in set `s`
     // are `grid[(2 * a + s) * bins..][..bins]`.
-    let mut grid = vec![EMPTY_BIN; 6 * bins];
+    let grid = &mut scratch.grid;
+    grid.clear();
+    grid.resize(6 * bins, EMPTY_BIN);
     let mut add = |set: usize, r: &PrimRef| {
         let k = bins_of(r.centroid(), min, scale, last);
         for (a, k) in k.into_iter().enumerate() {
@@ -118,7 +132,9 @@ pub fn split(refs: &mut [PrimRef], centroids: &Aabb, bins: u32) -> Option<Split>
     }
     let n = refs.len() as u32;
     let mut best: Option<(f32, usize, usize)> = None;
-    let mut right_cost = vec![0.0f32; bins];
+    let right_cost = &mut scratch.right_cost;
+    right_cost.clear();
+    right_cost.resize(bins, 0.0);
     for a in (0..3).filter(|&a| ext[a] > 0.0) {
         let bin = &grid[2 * a * bins..][..bins];
         // right_cost[k]: area * count of bins k..bins (0 while they are empty).
@@ -197,7 +213,7 @@ mod tests {
             .map(|i| point_ref(i, if i % 2 == 0 { 0.0 } else { 10.0 } + i as f32 * 0.01))
             .collect();
         let (_, c) = bounds_and_centroids(&refs);
-        let sp = split(&mut refs, &c, 8).unwrap();
+        let sp = split(&mut refs, &c, 8, &mut Scratch::default()).unwrap();
         assert_eq!(sp.mid, 5);
         assert_eq!(sp.left, bounds_and_centroids(&refs[..5]));
         assert_eq!(sp.right, bounds_and_centroids(&refs[5..]));
@@ -208,6 +224,6 @@ mod tests {
     fn coincident_centroids_have_no_plane() {
         let mut refs: Vec<PrimRef> = (0..4).map(|i| point_ref(i, 1.0)).collect();
         let (_, c) = bounds_and_centroids(&refs);
-        assert!(split(&mut refs, &c, 16).is_none());
+        assert!(split(&mut refs, &c, 16, &mut Scratch::default()).is_none());
     }
 }

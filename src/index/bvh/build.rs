@@ -4,10 +4,11 @@
 //! with `rayon::join` when the current pool has more than one thread; the tree is the same
 //! either way (every decision depends only on the primitives of the subtree).
 
+use super::binned::{self, Scratch};
 use super::node::Node;
 use super::params::{BuildConfig, SplitMethod};
 use super::prim_ref::{PrimRef, bounds_and_centroids};
-use super::{binned, sweep};
+use super::sweep;
 use crate::geometry::Aabb;
 
 /// Most levels of the tree (root = level 1). A node at this level becomes a leaf whatever its
@@ -45,7 +46,15 @@ pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
     assert!(!refs.is_empty(), "the caller rejects empty scenes");
     let parallel = rayon::current_num_threads() > 1;
     let boxes = bounds_and_centroids(&refs);
-    let tree = subtree(&mut refs, boxes, 0, 1, cfg, parallel);
+    let tree = subtree(
+        &mut refs,
+        boxes,
+        0,
+        1,
+        cfg,
+        parallel,
+        &mut Scratch::default(),
+    );
     let mut out = Built {
         nodes: Vec::with_capacity(2 * refs.len()),
         prim_ids: refs.iter().map(|r| r.id()).collect(),
@@ -65,6 +74,7 @@ fn subtree(
     level: u32,
     cfg: &BuildConfig,
     par: bool,
+    scratch: &mut Scratch,
 ) -> Tree {
     let n = refs.len();
     let (bounds, centroids) = boxes;
@@ -80,8 +90,10 @@ fn subtree(
     let split = match cfg.split {
         // Nodes with fewer primitives than bins use one bin per primitive: the sweep over empty
         // bins would cost more than the binning.
-        SplitMethod::Binned => binned::split(refs, &centroids, cfg.bins.min(n as u32).max(2))
-            .map(|s| (s.cost, s.mid, Some((s.left, s.right)))),
+        SplitMethod::Binned => {
+            binned::split(refs, &centroids, cfg.bins.min(n as u32).max(2), scratch)
+                .map(|s| (s.cost, s.mid, Some((s.left, s.right))))
+        }
         SplitMethod::Sweep => sweep::split(refs).map(|(cost, mid)| (cost, mid, None)),
     };
     let small = n <= cfg.leaf_size as usize;
@@ -104,13 +116,23 @@ fn subtree(
     let right_first = first + mid as u32;
     let (a, b) = if par && n >= PARALLEL_MIN {
         rayon::join(
-            || subtree(l, lb, first, level + 1, cfg, par),
-            || subtree(r, rb, right_first, level + 1, cfg, par),
+            || subtree(l, lb, first, level + 1, cfg, par, scratch),
+            || {
+                subtree(
+                    r,
+                    rb,
+                    right_first,
+                    level + 1,
+                    cfg,
+                    par,
+                    &mut Scratch::default(),
+                )
+            },
         )
     } else {
         (
-            subtree(l, lb, first, level + 1, cfg, par),
-            subtree(r, rb, right_first, level + 1, cfg, par),
+            subtree(l, lb, first, level + 1, cfg, par, scratch),
+            subtree(r, rb, right_first, level + 1, cfg, par, scratch),
         )
     };
     Tree::Inner {
