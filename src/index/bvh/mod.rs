@@ -1,8 +1,8 @@
 //! A bounding volume hierarchy: top-down SAH build (binned or full sweep), 32-byte depth-first
 //! nodes, front-to-back closest-hit traversal with early termination, and any-hit.
 //!
-//! - [`params`]: presets and overrides; [`build`]: the builder and flattening, with the SAH
-//!   split finders in [`binned`] and [`sweep`]; [`node`]: the node layout; [`traverse`]: the
+//! - [`params`]: presets and overrides; `build`: the builder and flattening, with the SAH
+//!   split finders in `binned` and `sweep`; `node`: the node layout; `traverse`: the
 //!   queries.
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids.
