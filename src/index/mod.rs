@@ -5,14 +5,18 @@
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
 mod brute;
+pub mod bvh;
 pub mod grid;
 pub mod mailbox;
+pub mod obvhs_peer;
 pub mod octree;
 mod registry;
 mod stats;
 
 pub use brute::BruteForce;
+pub use bvh::Bvh;
 pub use grid::{Grid, GridParams};
+pub use obvhs_peer::{ObvhsBvh2, ObvhsCwBvh};
 pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};
 pub use registry::{
     BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,

@@ -3,7 +3,8 @@
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
 use super::{
-    BruteForce, BuildError, Counters, Index, IndexInfo, NeighborOctree, NoStats, TopDownOctree,
+    BruteForce, BuildError, Bvh, Counters, Index, IndexInfo, NeighborOctree, NoStats, ObvhsBvh2,
+    ObvhsCwBvh, TopDownOctree,
 };
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
@@ -41,6 +42,18 @@ const REGISTRY: &[Entry] = &[
     Entry {
         name: "octree-topdown",
         build: build_dyn::<TopDownOctree>,
+    },
+    Entry {
+        name: "bvh",
+        build: build_dyn::<Bvh>,
+    },
+    Entry {
+        name: "obvhs-bvh2",
+        build: build_dyn::<ObvhsBvh2>,
+    },
+    Entry {
+        name: "obvhs-cwbvh",
+        build: build_dyn::<ObvhsCwBvh>,
     },
 ];
 

@@ -1,0 +1,210 @@
+//! Build parameters of the BVH: a named preset (fastest build to best quality) and optional
+//! overrides, checked into a [`BuildConfig`] before building.
+
+use crate::index::BuildError;
+use serde::{Deserialize, Serialize};
+
+/// Smallest and largest number of SAH bins accepted.
+pub const BINS: std::ops::RangeInclusive<u32> = 2..=64;
+/// Largest leaf size accepted (primitives per leaf).
+pub const MAX_LEAF_SIZE: u32 = 64;
+/// Largest traversal/intersection cost ratio accepted.
+pub const MAX_COST_RATIO: f32 = 1000.0;
+
+/// How a node's primitives are split.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SplitMethod {
+    /// Binned SAH: centroids binned into `bins` buckets per axis, `bins - 1` candidate planes
+    /// (nodes of `n < bins` primitives use `n` bins).
+    Binned,
+    /// Full sweep SAH: every split between centroid-sorted primitives on every axis.
+    Sweep,
+}
+
+/// Presets from fastest build to best tree quality.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// Binned SAH, 8 bins, leaves up to 8 primitives.
+    Fastest,
+    /// Binned SAH, 12 bins, leaves up to 4 primitives.
+    Fast,
+    /// Binned SAH, 16 bins, leaves up to 4 primitives (the suite's default).
+    #[default]
+    Medium,
+    /// Binned SAH, 32 bins, leaves up to 4 primitives.
+    High,
+    /// Full sweep SAH, leaves up to 4 primitives (slowest build, best SAH).
+    Sweep,
+}
+
+impl Preset {
+    /// Every preset, fastest build first.
+    pub const ALL: [Preset; 5] = [
+        Preset::Fastest,
+        Preset::Fast,
+        Preset::Medium,
+        Preset::High,
+        Preset::Sweep,
+    ];
+
+    /// Name as written in parameters (`bvh:preset="sweep"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Fastest => "fastest",
+            Preset::Fast => "fast",
+            Preset::Medium => "medium",
+            Preset::High => "high",
+            Preset::Sweep => "sweep",
+        }
+    }
+
+    fn config(self) -> BuildConfig {
+        let binned = |bins, leaf_size| BuildConfig {
+            split: SplitMethod::Binned,
+            bins,
+            leaf_size,
+            cost_ratio: 1.0,
+        };
+        match self {
+            Preset::Fastest => binned(8, 8),
+            Preset::Fast => binned(12, 4),
+            Preset::Medium => binned(16, 4),
+            Preset::High => binned(32, 4),
+            Preset::Sweep => BuildConfig {
+                split: SplitMethod::Sweep,
+                ..binned(32, 4)
+            },
+        }
+    }
+}
+
+/// Parameters of `bvh` (`bvh:preset="sweep",leaf_size=2`): a preset, and overrides of its
+/// fields. Unknown keys are rejected.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BvhParams {
+    pub preset: Preset,
+    /// Split method (overrides the preset's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub split: Option<SplitMethod>,
+    /// SAH bins per axis for the binned split, in [`BINS`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bins: Option<u32>,
+    /// Most primitives in a leaf, `1..=`[`MAX_LEAF_SIZE`]. Nodes with more are always split
+    /// (unless the depth limit is reached); nodes with at most this many become leaves when the
+    /// SAH says a split does not pay.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub leaf_size: Option<u32>,
+    /// Cost of one node traversal relative to one primitive test, in `(0, `[`MAX_COST_RATIO`]`]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cost_ratio: Option<f32>,
+}
+
+/// Checked build settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BuildConfig {
+    pub split: SplitMethod,
+    pub bins: u32,
+    pub leaf_size: u32,
+    pub cost_ratio: f32,
+}
+
+impl BvhParams {
+    /// The preset's parameters.
+    pub fn preset(preset: Preset) -> BvhParams {
+        BvhParams {
+            preset,
+            ..BvhParams::default()
+        }
+    }
+
+    /// The preset with the overrides applied, or an error saying which value is out of range.
+    pub fn config(&self) -> Result<BuildConfig, BuildError> {
+        let bad = |message: String| BuildError::Params {
+            index: "bvh".into(),
+            message,
+        };
+        let mut c = self.preset.config();
+        if let Some(split) = self.split {
+            c.split = split;
+        }
+        if let Some(bins) = self.bins {
+            if !BINS.contains(&bins) {
+                return Err(bad(format!(
+                    "bins = {bins} is out of range: use {} to {}",
+                    BINS.start(),
+                    BINS.end()
+                )));
+            }
+            c.bins = bins;
+        }
+        if let Some(leaf) = self.leaf_size {
+            if !(1..=MAX_LEAF_SIZE).contains(&leaf) {
+                return Err(bad(format!(
+                    "leaf_size = {leaf} is out of range: use 1 to {MAX_LEAF_SIZE}"
+                )));
+            }
+            c.leaf_size = leaf;
+        }
+        if let Some(r) = self.cost_ratio {
+            if !(r > 0.0 && r <= MAX_COST_RATIO) {
+                return Err(bad(format!(
+                    "cost_ratio = {r} is out of range: use a number > 0 and <= {MAX_COST_RATIO}"
+                )));
+            }
+            c.cost_ratio = r;
+        }
+        Ok(c)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overrides_apply_and_absurd_values_are_errors() {
+        let p = BvhParams {
+            preset: Preset::Sweep,
+            leaf_size: Some(2),
+            ..BvhParams::default()
+        };
+        let c = p.config().unwrap();
+        assert_eq!((c.split, c.leaf_size), (SplitMethod::Sweep, 2));
+        for bad in [
+            BvhParams {
+                bins: Some(1),
+                ..BvhParams::default()
+            },
+            BvhParams {
+                bins: Some(10_000),
+                ..BvhParams::default()
+            },
+            BvhParams {
+                leaf_size: Some(0),
+                ..BvhParams::default()
+            },
+            BvhParams {
+                cost_ratio: Some(f32::NAN),
+                ..BvhParams::default()
+            },
+            BvhParams {
+                cost_ratio: Some(-1.0),
+                ..BvhParams::default()
+            },
+        ] {
+            let e = bad.config().unwrap_err().to_string();
+            assert!(e.contains("out of range"), "{e}");
+        }
+    }
+
+    #[test]
+    fn every_preset_is_valid() {
+        for p in Preset::ALL {
+            let c = BvhParams::preset(p).config().unwrap();
+            assert!(BINS.contains(&c.bins) && c.leaf_size >= 1, "{}", p.name());
+        }
+    }
+}

@@ -1,0 +1,283 @@
+//! The BVH (every preset) against brute force: the agreement scenes, the bunny, degenerate
+//! inputs, the depth cap, bad parameters, and that it actually culls.
+
+mod common;
+
+use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
+use accelbench::harness::verify::compare_closest;
+use accelbench::index::bvh::{MAX_DEPTH, Preset};
+use accelbench::index::{BuildError, Counters, IndexSpec, TraceIndex, build_index};
+use accelbench::rays::{incoherent_rays, primary_rays};
+use accelbench::scene::{Scene, generators};
+use common::{agreement_rays, agreement_scenes};
+use glam::{Vec3, Vec3A};
+
+fn preset_specs() -> Vec<String> {
+    Preset::ALL
+        .iter()
+        .map(|p| format!("bvh:preset=\"{}\"", p.name()))
+        .chain([
+            "bvh:leaf_size=1,bins=2".to_owned(),
+            "bvh:cost_ratio=100".to_owned(),
+        ])
+        .collect()
+}
+
+fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
+    let spec: IndexSpec = spec.parse().unwrap();
+    build_index(&spec, &scene.geometry(), TriangleKernelKind::Watertight).unwrap()
+}
+
+/// Brute force once, then every spec: closest hits bit for bit, any-hit equal to "has a closest
+/// hit". Returns the number of mismatching rays per spec (closest and any-hit).
+fn mismatches(specs: &[String], scene: &Scene, rays: &[Ray]) -> Vec<(String, usize, String)> {
+    let brute = build("brute", scene);
+    let mut expected = vec![None; rays.len()];
+    brute.closest_hits(rays, &mut expected);
+    specs
+        .iter()
+        .map(|spec| {
+            let index = build(spec, scene);
+            let mut got = vec![None; rays.len()];
+            index.closest_hits(rays, &mut got);
+            let m = compare_closest(rays, &expected, &got);
+            let mut any = vec![false; rays.len()];
+            index.any_hits(rays, &mut any);
+            let any_bad = expected
+                .iter()
+                .zip(&any)
+                .filter(|(e, a)| e.is_some() != **a)
+                .count();
+            let first = m.first().map(|m| m.to_string()).unwrap_or_default();
+            (spec.clone(), m.len() + any_bad, first)
+        })
+        .collect()
+}
+
+fn assert_all_agree(specs: &[String], scene: &Scene, rays: &[Ray]) {
+    for (spec, bad, first) in mismatches(specs, scene, rays) {
+        assert_eq!(
+            bad,
+            0,
+            "{spec} on {}: {bad} of {} rays mismatch; first: {first}",
+            scene.name,
+            rays.len()
+        );
+    }
+}
+
+#[test]
+fn every_preset_agrees_on_the_agreement_scenes() {
+    for scene in agreement_scenes() {
+        assert_all_agree(&preset_specs(), &scene, &agreement_rays(&scene, 2000));
+    }
+}
+
+#[test]
+fn default_bvh_agrees_through_the_shared_kit() {
+    common::assert_agrees_everywhere("bvh", 1000);
+}
+
+#[test]
+fn every_preset_agrees_on_the_bunny() {
+    let Some(bunny) = common::bunny() else {
+        eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
+        return;
+    };
+    let b = bunny.ray_set_bounds();
+    let mut rays = primary_rays(&b, 48, 48).unwrap();
+    rays.extend(incoherent_rays(&b, 2000, 42));
+    assert_all_agree(&preset_specs(), &bunny, &rays);
+}
+
+/// Rays from all around `scene` towards its centre and random rays, plus the kit's rays.
+fn rays_for(scene: &Scene, n: usize) -> Vec<Ray> {
+    agreement_rays(scene, n)
+}
+
+fn tri(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> Triangle {
+    Triangle::new(Vec3A::from(a), Vec3A::from(b), Vec3A::from(c))
+}
+
+#[test]
+fn one_primitive() {
+    let scene = Scene::from_triangles("one", vec![tri([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0])]);
+    let index = build("bvh", &scene);
+    assert_eq!((index.info().nodes, index.info().leaves), (1, 1));
+    let hit = index
+        .closest_hit(&Ray::infinite(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap())
+        .unwrap();
+    assert_eq!((hit.prim, hit.t), (0, 1.0));
+    assert_all_agree(&preset_specs(), &scene, &rays_for(&scene, 400));
+}
+
+#[test]
+fn all_primitives_share_one_centroid() {
+    // Triangles of growing size, rotated about the z axis, all centred on the origin.
+    let tris: Vec<Triangle> = (0..300)
+        .map(|i| {
+            let (s, a) = (0.1 + i as f32 * 0.01, i as f32 * 0.7);
+            let p = |k: f32| {
+                let ang = a + k * std::f32::consts::TAU / 3.0;
+                Vec3A::new(ang.cos() * s, ang.sin() * s, (k - 1.0) * s * 0.3)
+            };
+            Triangle::new(p(0.0), p(1.0), p(2.0))
+        })
+        .collect();
+    let scene = Scene::from_triangles("one centroid", tris);
+    assert_all_agree(&preset_specs(), &scene, &rays_for(&scene, 1000));
+    assert!(build("bvh", &scene).info().depth <= MAX_DEPTH as usize);
+}
+
+#[test]
+fn zero_area_triangles() {
+    let mut tris: Vec<Triangle> = (0..200)
+        .map(|i| {
+            let x = i as f32 * 0.05;
+            if i % 3 == 0 {
+                tri([x, 0.0, 0.0], [x, 0.0, 0.0], [x, 0.0, 0.0]) // a point
+            } else if i % 3 == 1 {
+                tri([x, 0.0, 0.0], [x, 1.0, 0.0], [x, 2.0, 0.0]) // a segment
+            } else {
+                tri([x, -1.0, -1.0], [x, 1.0, -1.0], [x, 0.0, 1.0])
+            }
+        })
+        .collect();
+    tris.push(tri([5.0, 5.0, 5.0], [5.0, 5.0, 5.0], [5.0, 5.0, 5.0]));
+    let scene = Scene::from_triangles("zero area", tris);
+    assert!(scene.degenerate_triangles() > 100);
+    assert_all_agree(&preset_specs(), &scene, &rays_for(&scene, 1000));
+}
+
+#[test]
+fn flat_scene_of_zero_thickness() {
+    // A grid of triangles in the plane z = 0.5, and rays in and across that plane.
+    let mut tris = Vec::new();
+    for i in 0..20 {
+        for j in 0..20 {
+            let (x, y) = (i as f32, j as f32);
+            tris.push(tri([x, y, 0.5], [x + 1.0, y, 0.5], [x, y + 1.0, 0.5]));
+            tris.push(tri(
+                [x + 1.0, y, 0.5],
+                [x + 1.0, y + 1.0, 0.5],
+                [x, y + 1.0, 0.5],
+            ));
+        }
+    }
+    let scene = Scene::from_triangles("flat", tris);
+    let mut rays = rays_for(&scene, 1000);
+    for i in 0..50 {
+        let f = i as f32 * 0.4;
+        rays.push(Ray::infinite(Vec3::new(f, 7.0, 3.0), Vec3::new(0.0, 0.0, -1.0)).unwrap());
+        rays.push(Ray::infinite(Vec3::new(-1.0, f, 0.5), Vec3::new(1.0, 0.0, 0.0)).unwrap());
+        rays.push(Ray::infinite(Vec3::new(f, f, 0.5), Vec3::new(0.3, 0.1, -0.0)).unwrap());
+    }
+    assert_all_agree(&preset_specs(), &scene, &rays);
+}
+
+#[test]
+fn coincident_duplicate_triangles() {
+    let base = generators::generate("icosphere", 500, 3).unwrap();
+    let mut tris = base.triangles.clone();
+    tris.extend(base.triangles.iter().rev()); // every triangle twice, at ids i and 2n-1-i
+    tris.extend(base.triangles.iter().take(50));
+    let scene = Scene::from_triangles("duplicates", tris);
+    // Ties at equal t go to the lower id: every hit is on an id of the first copy.
+    let index = build("bvh", &scene);
+    let rays = rays_for(&scene, 1000);
+    for r in &rays {
+        if let Some(h) = index.closest_hit(r) {
+            assert!((h.prim as usize) < base.triangles.len(), "{h:?}");
+        }
+    }
+    assert_all_agree(&preset_specs(), &scene, &rays);
+}
+
+#[test]
+fn depth_is_capped_on_exponentially_spaced_primitives() {
+    // Triangles at x = 0.8^i: each SAH split peels off a few, so the uncapped tree would be
+    // deeper than the traversal stack.
+    let tris: Vec<Triangle> = (0..400)
+        .map(|i| {
+            let x = 0.8f32.powi(i);
+            let s = x * 0.05;
+            tri([x, -s, -s], [x, s, -s], [x, 0.0, s])
+        })
+        .collect();
+    let scene = Scene::from_triangles("exponential", tris);
+    let mut rays = rays_for(&scene, 500);
+    for i in 0..400 {
+        let x = 0.8f32.powi(i);
+        rays.push(Ray::infinite(Vec3::new(x, 0.0, 0.0) - Vec3::X * x, Vec3::X).unwrap());
+        rays.push(Ray::infinite(Vec3::new(x, 0.0, 1.0), Vec3::new(0.0, 0.0, -1.0)).unwrap());
+    }
+    for spec in preset_specs() {
+        let info = build(&spec, &scene).info().clone();
+        assert!(
+            info.depth <= MAX_DEPTH as usize,
+            "{spec}: depth {}",
+            info.depth
+        );
+    }
+    assert_eq!(
+        build("bvh:leaf_size=1,bins=2", &scene).info().depth,
+        MAX_DEPTH as usize
+    );
+    assert_all_agree(&preset_specs(), &scene, &rays);
+}
+
+#[test]
+fn bad_parameters_and_empty_scenes_are_errors() {
+    let scene = generators::generate("icosphere", 100, 1).unwrap();
+    for (spec, needle) in [
+        ("bvh:bins=0", "bins"),
+        ("bvh:bins=1000", "bins"),
+        ("bvh:leaf_size=0", "leaf_size"),
+        ("bvh:cost_ratio=-2.0", "cost_ratio"),
+        ("bvh:preset=\"slowest\"", "preset"),
+        ("bvh:split=\"median\"", "split"),
+        ("bvh:leafsize=4", "unknown field"),
+    ] {
+        let s: IndexSpec = spec.parse().unwrap();
+        let err = build_index(&s, &scene.geometry(), TriangleKernelKind::Watertight)
+            .err()
+            .unwrap_or_else(|| panic!("{spec} should fail"));
+        assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
+        assert!(err.to_string().contains(needle), "{spec}: {err}");
+    }
+    let empty = Scene::from_triangles("empty", vec![]);
+    let err = build_index(
+        &IndexSpec::named("bvh"),
+        &empty.geometry(),
+        TriangleKernelKind::Watertight,
+    )
+    .err()
+    .unwrap();
+    assert!(matches!(err, BuildError::EmptyScene));
+}
+
+#[test]
+fn culls_most_primitives_and_reports_memory() {
+    let scene = generators::generate("icosphere", 20_000, 1).unwrap();
+    let rays = incoherent_rays(&scene.ray_set_bounds(), 2000, 42);
+    let index = build("bvh", &scene);
+    let mut out = vec![None; rays.len()];
+    let mut c = vec![Counters::default(); rays.len()];
+    index.closest_hits_counted(&rays, &mut out, &mut c);
+    let total: Counters = c.into_iter().sum();
+    let per_ray = total.prim_tests as f64 / rays.len() as f64;
+    assert!(
+        per_ray < 0.01 * scene.len() as f64,
+        "{per_ray} tests per ray"
+    );
+    assert!(total.node_visits > 0 && total.box_tests >= total.node_visits);
+    let info = index.info();
+    let bpp = info
+        .extra
+        .iter()
+        .find(|(k, _)| k == "bytes_per_prim")
+        .unwrap()
+        .1;
+    assert_eq!(bpp, info.memory_bytes as f64 / scene.len() as f64);
+    assert_eq!(info.memory_bytes, info.nodes * 32 + scene.len() * 4);
+}
