@@ -5,11 +5,14 @@
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
 mod brute;
+pub mod kdtree;
 pub mod mailbox;
+pub mod near_far;
 mod registry;
 mod stats;
 
 pub use brute::BruteForce;
+pub use kdtree::KdTree;
 pub use registry::{
     BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,
 };

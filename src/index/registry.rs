@@ -2,7 +2,7 @@
 //! [`TraceIndex`] that the harness, the CLI and reports use. The virtual call happens once per
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
-use super::{BruteForce, BuildError, Counters, Index, IndexInfo, NoStats};
+use super::{BruteForce, BuildError, Counters, Index, IndexInfo, KdTree, NoStats};
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
 use rayon::prelude::*;
@@ -23,10 +23,16 @@ struct Entry {
 }
 
 /// Every index the suite knows, in report order. Adding an index is one line here.
-const REGISTRY: &[Entry] = &[Entry {
-    name: "brute",
-    build: build_dyn::<BruteForce>,
-}];
+const REGISTRY: &[Entry] = &[
+    Entry {
+        name: "brute",
+        build: build_dyn::<BruteForce>,
+    },
+    Entry {
+        name: "kdtree",
+        build: build_dyn::<KdTree>,
+    },
+];
 
 /// Names of all registered indices, in report order.
 pub fn index_names() -> Vec<&'static str> {

@@ -3,6 +3,7 @@
 //! kernel, so a triangle-only scene never pays for a sphere branch and the kernel choice costs no
 //! dispatch.
 
+use crate::geometry::clip::triangle_clipped_bounds;
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
 use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
@@ -36,8 +37,9 @@ pub trait Geometry: Clone + Send + Sync + 'static {
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32>;
     /// Conservative overlap of the primitive with a closed box (never a false "no").
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool;
-    /// Bounds of the part of the primitive inside `cell` (for kd-tree "perfect splits");
-    /// by default the overlap of the two boxes, which is conservative.
+    /// Bounds of the part of the primitive inside `cell` (for kd-tree "perfect splits"):
+    /// conservative (contains the exact part, rounding included), empty when they do not meet.
+    /// By default the overlap of the two boxes; triangles are clipped to the box.
     fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
         self.bounds(prim).intersection(*cell)
     }
@@ -105,6 +107,9 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
         triangle_overlaps_box(&self.tris[prim as usize], cell)
     }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        triangle_clipped_bounds(&self.tris[prim as usize], cell)
+    }
     fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
         self.tris[prim as usize].normal()
     }
@@ -163,6 +168,15 @@ impl<K: TriangleKernel> Geometry for Mixed<K> {
         match self.tris.get(i) {
             Some(t) => triangle_overlaps_box(t, cell),
             None => sphere_overlaps_box(&self.spheres[i - self.tris.len()], cell),
+        }
+    }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        let i = prim as usize;
+        match self.tris.get(i) {
+            Some(t) => triangle_clipped_bounds(t, cell),
+            None => self.spheres[i - self.tris.len()]
+                .bounds()
+                .intersection(*cell),
         }
     }
     fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
