@@ -1,5 +1,5 @@
-//! Clipping triangles to boxes and half-spaces (Sutherland–Hodgman), for the bounds of the part
-//! of a triangle inside a kd-tree cell ("perfect splits") or on one side of a BSP plane.
+//! Clipping triangles to boxes (Sutherland–Hodgman), for the bounds of the part of a triangle
+//! inside a kd-tree cell ("perfect splits"), and boxes to half-spaces (BSP cells).
 //!
 //! Every result is conservative: it contains the exact part of the triangle it stands for. The
 //! clipped vertices carry rounding error (a few ulps per clip), so results are padded outward by
@@ -110,24 +110,39 @@ pub fn triangle_clipped_bounds(tri: &Triangle, cell: &Aabb) -> Aabb {
     pad(poly.bounds()).intersection(limit)
 }
 
-/// Bounds of the parts of `tri` on each side of the plane `normal . p = offset`:
-/// `(below, above)` where below is `normal . p <= offset`. Either may be empty. Conservative
-/// against rounding: each contains the exact part (and both contain the crossing segment).
-pub fn triangle_split_bounds(tri: &Triangle, normal: Vec3A, offset: f32) -> (Aabb, Aabb) {
-    let poly = Polygon::triangle(tri);
-    let limit = tri.bounds();
-    let below = poly.clip(|p| offset - normal.dot(p), |p| p);
-    let above = poly.clip(|p| normal.dot(p) - offset, |p| p);
-    let side = |p: Polygon| {
-        if p.overflow {
-            limit
-        } else if p.n == 0 {
-            Aabb::EMPTY
-        } else {
-            pad(p.bounds()).intersection(limit)
-        }
+/// Bounds of the part of box `b` where `normal . p <= offset` (`below`) or `>= offset`
+/// (otherwise): the box corners on that side and the crossings of its edges with the plane.
+/// Conservative (padded like the triangle clip), never larger than `b`; empty when the box lies
+/// entirely on the other side.
+pub fn box_halfspace_bounds(b: &Aabb, normal: Vec3A, offset: f32, below: bool) -> Aabb {
+    let corner = |i: usize| {
+        Vec3A::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        )
     };
-    (side(below), side(above))
+    let sign = if below { -1.0 } else { 1.0 };
+    let dist = |p: Vec3A| sign * (normal.dot(p) - offset);
+    let mut out = Aabb::EMPTY;
+    for i in 0..8 {
+        let a = corner(i);
+        let da = dist(a);
+        if da >= 0.0 {
+            out = out.grown(a);
+        }
+        // Edges to the corners that differ in one higher bit.
+        for bit in [1, 2, 4] {
+            if i & bit == 0 {
+                let c = corner(i | bit);
+                let dc = dist(c);
+                if (da < 0.0 && dc > 0.0) || (da > 0.0 && dc < 0.0) {
+                    out = out.grown(a + (c - a) * (da / (da - dc)));
+                }
+            }
+        }
+    }
+    pad(out).intersection(*b)
 }
 
 #[cfg(test)]
@@ -191,24 +206,17 @@ mod tests {
     }
 
     #[test]
-    fn split_bounds_cover_both_sides() {
-        let t = Triangle::new(
-            Vec3A::new(0.0, 0.0, 0.0),
-            Vec3A::new(1.0, 0.0, 0.0),
-            Vec3A::new(0.0, 1.0, 0.0),
-        );
+    fn box_cut_by_a_diagonal_plane() {
+        // x + y <= 1 cuts the unit cube into a prism whose bounds are the whole cube; x + y <= 0.5
+        // leaves the corner region x, y in [0, 0.5].
         let n = Vec3A::new(1.0, 1.0, 0.0).normalize();
-        let (lo, hi) = triangle_split_bounds(&t, n, n.dot(Vec3A::new(0.25, 0.25, 0.0)));
-        assert!(lo.contains(Vec3A::ZERO) && lo.max.x < 0.6);
-        assert!(hi.contains(Vec3A::new(1.0, 0.0, 0.0)) && hi.contains(Vec3A::new(0.0, 1.0, 0.0)));
-        // Entirely on one side.
-        let (lo, hi) = triangle_split_bounds(&t, Vec3A::Z, 5.0);
-        assert_eq!(
-            lo,
-            t.bounds()
-                .padded(CLIP_PAD_ULPS * f32::EPSILON)
-                .intersection(t.bounds())
+        let b = box_halfspace_bounds(&unit(), n, n.dot(Vec3A::new(0.25, 0.25, 0.0)), true);
+        assert!(
+            b.max.x >= 0.5 && b.max.x < 0.51 && b.max.y < 0.51 && b.max.z == 1.0,
+            "{b:?}"
         );
-        assert!(hi.is_empty());
+        let a = box_halfspace_bounds(&unit(), n, n.dot(Vec3A::new(0.25, 0.25, 0.0)), false);
+        assert_eq!(a, unit());
+        assert!(box_halfspace_bounds(&unit(), Vec3A::Z, 2.0, false).is_empty());
     }
 }

@@ -5,6 +5,7 @@
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
 mod brute;
+pub mod bsp;
 pub mod kdtree;
 pub mod mailbox;
 pub mod near_far;
@@ -12,6 +13,7 @@ mod registry;
 mod stats;
 
 pub use brute::BruteForce;
+pub use bsp::Bsp;
 pub use kdtree::KdTree;
 pub use registry::{
     BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,

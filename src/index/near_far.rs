@@ -13,9 +13,10 @@
 //!
 //! Each primitive is tested at most once per ray (the shared [`crate::index::mailbox`]).
 
-use super::Stats;
 use super::mailbox::with_mailbox;
-use crate::geometry::{ClosestHit, Hit, Ray};
+use super::{BuildError, Stats};
+use crate::geometry::overlap::OVERLAP_PAD;
+use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::scene::Geometry;
 
 /// Deepest tree the traversal stack supports (builders reject a larger `max_depth`).
@@ -25,6 +26,27 @@ pub const MAX_TREE_DEPTH: u32 = 64;
 /// `(split - origin) * inv_dir`: three roundings need `gamma(3)` (about 1.8e-7); the rest is
 /// margin for the kernels' own rounding of `t` near a plane.
 pub const CROSSING_REL: f32 = 1.0e-6;
+
+/// The bounds of all primitives, or an error naming the problem (NaN, infinite coordinates).
+pub fn scene_bounds<G: Geometry>(geom: &G, index: &str) -> Result<Aabb, BuildError> {
+    let b = (0..geom.len() as u32).fold(Aabb::EMPTY, |b, p| b.union(geom.bounds(p)));
+    if b.is_empty() || !b.min.is_finite() || !b.max.is_finite() {
+        return Err(BuildError::Failed {
+            index: index.into(),
+            message: format!(
+                "the scene bounds {:?}..{:?} are not finite; remove NaN or infinite coordinates",
+                b.min, b.max
+            ),
+        });
+    }
+    Ok(b)
+}
+
+/// Classification padding for a scene with bounds `b`: [`OVERLAP_PAD`] of its largest
+/// coordinate, as for every overlap test.
+pub fn scene_pad(b: &Aabb) -> f32 {
+    b.min.abs().max(b.max.abs()).max_element() * OVERLAP_PAD + f32::MIN_POSITIVE
+}
 
 /// One step of the traversal at a node.
 pub enum Step<'a> {

@@ -2,7 +2,7 @@
 //! [`TraceIndex`] that the harness, the CLI and reports use. The virtual call happens once per
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
-use super::{BruteForce, BuildError, Counters, Index, IndexInfo, KdTree, NoStats};
+use super::{BruteForce, Bsp, BuildError, Counters, Index, IndexInfo, KdTree, NoStats};
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
 use rayon::prelude::*;
@@ -31,6 +31,10 @@ const REGISTRY: &[Entry] = &[
     Entry {
         name: "kdtree",
         build: build_dyn::<KdTree>,
+    },
+    Entry {
+        name: "bsp",
+        build: build_dyn::<Bsp>,
     },
 ];
 

@@ -45,6 +45,35 @@ pub trait Geometry: Clone + Send + Sync + 'static {
     }
     /// Unit geometric normal at the hit (final hit only).
     fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A;
+    /// The interval `[min, max]` of `dir . p` over the primitive's points (its extent along
+    /// `dir`, for classifying it against an arbitrary plane), up to the rounding of a dot
+    /// product (callers pad). By default from the corners of its bounds.
+    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
+        let b = self.bounds(prim);
+        let up = dir.cmpge(Vec3A::ZERO);
+        (
+            dir.dot(Vec3A::select(up, b.min, b.max)),
+            dir.dot(Vec3A::select(up, b.max, b.min)),
+        )
+    }
+    /// The primitive's own plane `(unit normal, offset)`, `normal . p = offset` on it (candidate
+    /// planes of autopartition BSPs); `None` for curved or zero-area primitives.
+    fn own_plane(&self, _prim: u32) -> Option<(Vec3A, f32)> {
+        None
+    }
+}
+
+/// Extent of a triangle along `dir` (see [`Geometry::extent_along`]).
+#[inline]
+fn triangle_extent(t: &Triangle, dir: Vec3A) -> (f32, f32) {
+    let d = t.v.map(|v| dir.dot(v));
+    (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]))
+}
+
+/// A triangle's own plane (see [`Geometry::own_plane`]).
+fn triangle_plane(t: &Triangle) -> Option<(Vec3A, f32)> {
+    let n = t.normal();
+    (n != Vec3A::ZERO).then(|| (n, n.dot(t.v[0])))
 }
 
 /// Clamps a kernel's `t` into the slab interval of `bounds` and applies the `[t_min, t_max]`
@@ -109,6 +138,12 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     }
     fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
         triangle_clipped_bounds(&self.tris[prim as usize], cell)
+    }
+    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
+        triangle_extent(&self.tris[prim as usize], dir)
+    }
+    fn own_plane(&self, prim: u32) -> Option<(Vec3A, f32)> {
+        triangle_plane(&self.tris[prim as usize])
     }
     fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
         self.tris[prim as usize].normal()

@@ -21,9 +21,10 @@ mod node;
 
 pub use node::{KdKind, KdNode};
 
-use super::near_far::{self, CROSSING_REL, MAX_TREE_DEPTH, NearFarTree, Step};
+use super::near_far::{
+    self, CROSSING_REL, MAX_TREE_DEPTH, NearFarTree, Step, scene_bounds, scene_pad,
+};
 use super::{BuildError, Index, IndexInfo, Stats};
-use crate::geometry::overlap::OVERLAP_PAD;
 use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
@@ -116,27 +117,6 @@ impl KdParams {
             leaf_size: self.leaf_size,
         })
     }
-}
-
-/// The bounds of all primitives, or an error naming the problem (NaN, infinite coordinates).
-pub(crate) fn scene_bounds<G: Geometry>(geom: &G, index: &str) -> Result<Aabb, BuildError> {
-    let b = (0..geom.len() as u32).fold(Aabb::EMPTY, |b, p| b.union(geom.bounds(p)));
-    if b.is_empty() || !b.min.is_finite() || !b.max.is_finite() {
-        return Err(BuildError::Failed {
-            index: index.into(),
-            message: format!(
-                "the scene bounds {:?}..{:?} are not finite; remove NaN or infinite coordinates",
-                b.min, b.max
-            ),
-        });
-    }
-    Ok(b)
-}
-
-/// Classification padding for a scene with bounds `b`: [`OVERLAP_PAD`] of its largest
-/// coordinate, as for every overlap test.
-pub(crate) fn scene_pad(b: &Aabb) -> f32 {
-    b.min.abs().max(b.max.abs()).max_element() * OVERLAP_PAD + f32::MIN_POSITIVE
 }
 
 impl KdTree {
