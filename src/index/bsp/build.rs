@@ -2,8 +2,10 @@
 //! quantiles of the primitives' bounds, and the own planes of sampled triangles,
 //! autopartition-style) are scored by a cost estimate and the cheapest one splits the node.
 //!
-//! Cost estimate: the SAH `traversal + intersect * (A(below) N(below) + A(above) N(above)) / A`
-//! over the bounding boxes of the cells. Each node keeps a box around its convex cell (the
+//! Axis planes: the kd-tree's full SAH sweep over perfect-split candidates (optionally also
+//! `axis_candidates` quantile positions). General planes: the cost estimate is the SAH
+//! `traversal + intersect * (A(below) N(below) + A(above) N(above)) / A` (with the same
+//! empty-space bonus) over the bounding boxes of the cells. Each node keeps a box around its convex cell (the
 //! parent's box cut by the plane, [`box_halfspace_bounds`]); we do not track the cells' exact
 //! polyhedra, so areas are those of the boxes, an estimate of the exact cell-area SAH of Ize,
 //! Wald & Parker (2008).
@@ -18,6 +20,7 @@ use super::node::{BspNode, MAX_LINK};
 use crate::geometry::Aabb;
 use crate::geometry::clip::box_halfspace_bounds;
 use crate::index::BuildError;
+use crate::index::kdtree::sweep::{Weights, best_axis_split};
 use crate::scene::Geometry;
 use glam::Vec3A;
 
@@ -25,6 +28,8 @@ use glam::Vec3A;
 pub(super) struct Limits {
     pub intersect: f32,
     pub traversal: f32,
+    pub empty_bonus: f32,
+    pub sweep: bool,
     pub axis_candidates: u32,
     pub plane_candidates: u32,
     pub max_depth: u32,
@@ -216,7 +221,9 @@ impl<G: Geometry> Builder<'_, G> {
         planes
     }
 
-    /// The cheapest candidate, if cheaper than a leaf and separating something.
+    /// The cheapest plane, if cheaper than a leaf and separating something: the best axis
+    /// plane of the full SAH sweep (as in the kd-tree, or at `axis_candidates` quantiles when
+    /// `sweep` is off), against the own planes of sampled primitives.
     fn best_plane(&self, refs: &[Ref], cell: &Aabb) -> Option<Plane> {
         let area = cell.surface_area();
         if area <= 0.0 || !area.is_finite() {
@@ -226,6 +233,26 @@ impl<G: Geometry> Builder<'_, G> {
         let n = refs.len();
         let mut best = None;
         let mut best_cost = l.intersect * n as f32;
+        if l.sweep {
+            let w = Weights {
+                intersect: l.intersect,
+                traversal: l.traversal,
+                empty_bonus: l.empty_bonus,
+            };
+            let mut events = Vec::new();
+            if let Some((axis, s, cost)) =
+                best_axis_split(n, |i| refs[i].b, cell, self.pad, &w, &mut events)
+            {
+                let mut normal = Vec3A::ZERO;
+                normal[axis] = 1.0;
+                best_cost = cost;
+                best = Some(Plane {
+                    normal,
+                    offset: s,
+                    axis: Some(axis),
+                });
+            }
+        }
         for p in self.candidates(refs, cell) {
             let (mut nb, mut na) = (0usize, 0usize);
             for r in refs {
@@ -237,8 +264,15 @@ impl<G: Geometry> Builder<'_, G> {
                 continue; // separates nothing
             }
             let (cb, ca) = self.child_cells(cell, &p);
+            let bonus = if nb == 0 || na == 0 {
+                1.0 - l.empty_bonus
+            } else {
+                1.0
+            };
             let cost = l.traversal
-                + l.intersect * (cb.surface_area() * nb as f32 + ca.surface_area() * na as f32)
+                + l.intersect
+                    * bonus
+                    * (cb.surface_area() * nb as f32 + ca.surface_area() * na as f32)
                     / area;
             if cost < best_cost {
                 best_cost = cost;

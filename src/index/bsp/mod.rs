@@ -38,7 +38,11 @@ pub struct BspParams {
     pub intersect_cost: f32,
     /// Cost of one traversal step.
     pub traversal_cost: f32,
-    /// Axis-plane candidates per axis and node (at quantiles of the primitives' bounds).
+    /// Fraction of the cost saved by a split that leaves a child empty, in `[0, 1)`.
+    pub empty_bonus: f32,
+    /// Find the best axis plane by the kd-tree's full SAH sweep over perfect-split candidates.
+    pub sweep: bool,
+    /// Further axis-plane candidates per axis and node (at quantiles of the primitives' bounds).
     pub axis_candidates: u32,
     /// Own-plane candidates per node (planes of evenly sampled triangles; 0 gives an axis-only
     /// BSP, and `axis_candidates=0` a pure autopartition). Build time grows linearly with
@@ -55,7 +59,9 @@ impl Default for BspParams {
         BspParams {
             intersect_cost: 80.0,
             traversal_cost: 1.0,
-            axis_candidates: 4,
+            empty_bonus: 0.2,
+            sweep: true,
+            axis_candidates: 0,
             plane_candidates: 12,
             max_depth: None,
             leaf_size: 2,
@@ -94,10 +100,17 @@ impl BspParams {
                 return Err(bad(format!("{name} must be a finite number > 0, got {v}")));
             }
         }
-        let total = 3 * self.axis_candidates as u64 + self.plane_candidates as u64;
-        if !(1..=1024).contains(&total) {
+        if !(0.0..1.0).contains(&self.empty_bonus) {
             return Err(bad(format!(
-                "3 * axis_candidates + plane_candidates must be in 1..=1024, got {total}"
+                "empty_bonus must be in [0, 1), got {}",
+                self.empty_bonus
+            )));
+        }
+        let total = 3 * self.axis_candidates as u64 + self.plane_candidates as u64;
+        if total > 1024 || (total == 0 && !self.sweep) {
+            return Err(bad(format!(
+                "3 * axis_candidates + plane_candidates must be in 0..=1024 (at least 1 without \
+                 sweep), got {total}"
             )));
         }
         let max_depth = self
@@ -114,6 +127,8 @@ impl BspParams {
         Ok(build::Limits {
             intersect: self.intersect_cost,
             traversal: self.traversal_cost,
+            empty_bonus: self.empty_bonus,
+            sweep: self.sweep,
             axis_candidates: self.axis_candidates,
             plane_candidates: self.plane_candidates,
             max_depth,

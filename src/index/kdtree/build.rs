@@ -13,6 +13,7 @@
 //! A primitive stored on both sides is clipped again to each child's cell (grown by `pad`).
 
 use super::node::{KdNode, MAX_PAYLOAD};
+use super::sweep::{Event, Weights, best_axis_split};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
 use crate::scene::Geometry;
@@ -32,13 +33,6 @@ pub(super) struct Costs {
 struct Ref {
     prim: u32,
     b: Aabb,
-}
-
-/// A bound of a reference projected on one axis.
-#[derive(Debug, Clone, Copy)]
-struct Event {
-    pos: f32,
-    start: bool,
 }
 
 /// The flattened tree and figures for reports.
@@ -148,72 +142,20 @@ impl<G: Geometry> Builder<'_, G> {
 
     /// The cheapest plane `(axis, position)` strictly inside the cell, if cheaper than a leaf.
     fn best_split(&mut self, refs: &[Ref], cell: &Aabb) -> Option<(usize, f32)> {
-        let area = cell.surface_area();
-        if area <= 0.0 || !area.is_finite() {
-            return None;
-        }
-        let c = self.costs;
-        let n = refs.len() as f32;
-        let mut best: Option<(usize, f32)> = None;
-        let mut best_cost = c.intersect * n;
-        let e = cell.extent();
-        for axis in 0..3 {
-            let (lo, hi) = (cell.min[axis], cell.max[axis]);
-            if hi <= lo {
-                continue;
-            }
-            let (e1, e2) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
-            self.events.clear();
-            for r in refs {
-                self.events.push(Event {
-                    pos: r.b.min[axis] - self.pad,
-                    start: true,
-                });
-                self.events.push(Event {
-                    pos: r.b.max[axis] + self.pad,
-                    start: false,
-                });
-            }
-            self.events.sort_unstable_by(|a, b| a.pos.total_cmp(&b.pos));
-            // Sweep: below(s) = starts before s, above(s) = ends after s.
-            let (mut n_below, mut n_above) = (0usize, refs.len());
-            let mut i = 0;
-            while i < self.events.len() {
-                let s = self.events[i].pos;
-                let (mut starts, mut ends) = (0usize, 0usize);
-                while i < self.events.len() && self.events[i].pos == s {
-                    if self.events[i].start {
-                        starts += 1;
-                    } else {
-                        ends += 1;
-                    }
-                    i += 1;
-                }
-                n_above -= ends;
-                if s > lo && s < hi {
-                    let cap = e1 * e2;
-                    let side = e1 + e2;
-                    let a_below = 2.0 * (cap + (s - lo) * side);
-                    let a_above = 2.0 * (cap + (hi - s) * side);
-                    let bonus = if n_below == 0 || n_above == 0 {
-                        1.0 - c.empty_bonus
-                    } else {
-                        1.0
-                    };
-                    let cost = c.traversal
-                        + c.intersect
-                            * bonus
-                            * (a_below * n_below as f32 + a_above * n_above as f32)
-                            / area;
-                    if cost < best_cost {
-                        best_cost = cost;
-                        best = Some((axis, s));
-                    }
-                }
-                n_below += starts;
-            }
-        }
-        best
+        let w = Weights {
+            intersect: self.costs.intersect,
+            traversal: self.costs.traversal,
+            empty_bonus: self.costs.empty_bonus,
+        };
+        best_axis_split(
+            refs.len(),
+            |i| refs[i].b,
+            cell,
+            self.pad,
+            &w,
+            &mut self.events,
+        )
+        .map(|(axis, s, _)| (axis, s))
     }
 
     /// Sends each reference to the side(s) it touches (within `pad`); references on both sides
