@@ -13,8 +13,8 @@
 //! [`Geometry`] contract clamps `t` into the slab interval of its bounds, computed with the same
 //! formula), so ties on a split plane are resolved by id as brute force does.
 //!
-//! Build time (one core, release): the Stanford bunny (69,451 triangles) takes about 2 s with the
-//! default parameters (see `cargo test --release --test kdtree -- --ignored --nocapture`).
+//! Build time (one core, release): the Stanford bunny (69,451 triangles) takes 1 to 2 s with the
+//! default parameters (1.15 M nodes, 8.7 references per triangle, 11.6 MB) (see `cargo test --release --test kdtree -- --ignored --nocapture`).
 
 mod build;
 mod node;
