@@ -13,7 +13,7 @@ use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::Scene;
 use common::{agreement_rays, agreement_scenes};
 
-const PEERS: [&str; 2] = ["obvhs-bvh2", "obvhs-cwbvh"];
+use accelbench::index::PEERS;
 
 fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
     let spec: IndexSpec = spec.parse().unwrap();

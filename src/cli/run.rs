@@ -181,6 +181,13 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
     let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap_or_default();
     println!("{summary}");
     eprintln!("report: {}", dir.display());
+    if res.peer_mismatch_total > 0 {
+        eprintln!(
+            "note: peers ({}) differed from brute force on {} results (see mismatches.txt)",
+            crate::index::PEERS.join(", "),
+            res.peer_mismatch_total
+        );
+    }
     let failed_builds: Vec<String> = res
         .notes
         .iter()

@@ -26,8 +26,14 @@ pub fn run(a: VerifyArgs) -> anyhow::Result<()> {
         println!("{} / {}: {}", n.scene, n.what, n.reason);
     }
     for m in &res.mismatches {
+        let peer = crate::index::PEERS.contains(&m.index.as_str());
         eprintln!(
-            "MISMATCH {} / {} / {} vs {}: {}",
+            "{} {} / {} / {} vs {}: {}",
+            if peer {
+                "peer mismatch (reported)"
+            } else {
+                "MISMATCH"
+            },
             m.scene,
             m.index,
             m.ray_set.name(),

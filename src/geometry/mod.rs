@@ -2,6 +2,7 @@
 
 mod aabb;
 mod aabb_kernel;
+pub mod clip;
 pub mod float;
 mod hit;
 pub mod overlap;

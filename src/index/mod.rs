@@ -5,21 +5,27 @@
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
 mod brute;
+pub mod bsp;
 pub mod bvh;
 pub mod grid;
+pub mod kdtree;
 pub mod mailbox;
+pub mod near_far;
 pub mod obvhs_peer;
 pub mod octree;
 mod registry;
 mod stats;
 
 pub use brute::BruteForce;
+pub use bsp::Bsp;
 pub use bvh::Bvh;
 pub use grid::{Grid, GridParams};
+pub use kdtree::KdTree;
 pub use obvhs_peer::{ObvhsBvh2, ObvhsCwBvh};
 pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};
 pub use registry::{
-    BoundIndex, IndexSpec, TraceIndex, build_index, build_index_on, index_names, parse_params,
+    BoundIndex, IndexSpec, PEERS, TraceIndex, build_index, build_index_on, index_names,
+    parse_params,
 };
 pub use stats::{Counters, NoStats, Stats};
 

@@ -3,8 +3,8 @@
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
 use super::{
-    BruteForce, BuildError, Bvh, Counters, Index, IndexInfo, NeighborOctree, NoStats, ObvhsBvh2,
-    ObvhsCwBvh, TopDownOctree,
+    BruteForce, Bsp, BuildError, Bvh, Counters, Index, IndexInfo, KdTree, NeighborOctree, NoStats,
+    ObvhsBvh2, ObvhsCwBvh, TopDownOctree,
 };
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
@@ -32,6 +32,10 @@ const REGISTRY: &[Entry] = &[
         build: build_dyn::<BruteForce>,
     },
     Entry {
+        name: "bvh",
+        build: build_dyn::<Bvh>,
+    },
+    Entry {
         name: "grid",
         build: build_dyn::<super::Grid>,
     },
@@ -44,8 +48,12 @@ const REGISTRY: &[Entry] = &[
         build: build_dyn::<TopDownOctree>,
     },
     Entry {
-        name: "bvh",
-        build: build_dyn::<Bvh>,
+        name: "kdtree",
+        build: build_dyn::<KdTree>,
+    },
+    Entry {
+        name: "bsp",
+        build: build_dyn::<Bsp>,
     },
     Entry {
         name: "obvhs-bvh2",
@@ -56,6 +64,11 @@ const REGISTRY: &[Entry] = &[
         build: build_dyn::<ObvhsCwBvh>,
     },
 ];
+
+/// Indices that are peers, not ours (obvhs, which traverses with its own box tests): their
+/// mismatches are reported, and callers decide whether they fail a run. The one list of such
+/// exceptions.
+pub const PEERS: &[&str] = &["obvhs-bvh2", "obvhs-cwbvh"];
 
 /// Names of all registered indices, in report order.
 pub fn index_names() -> Vec<&'static str> {

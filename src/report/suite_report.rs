@@ -111,7 +111,7 @@ pub fn write_suite_report(
     let json = serde_json::to_string_pretty(meta).expect("meta serializes");
     std::fs::write(dir.join("meta.json"), json).map_err(err)?;
     let plots = write_plots(dir, meta, &res.rows)?;
-    if res.mismatch_total > 0 {
+    if res.mismatch_total + res.peer_mismatch_total > 0 {
         let mut t = String::new();
         for m in &res.mismatches {
             let _ = writeln!(
@@ -310,11 +310,22 @@ pub fn summary_markdown(
         meta.config.repeats
     );
     let _ = writeln!(s, "Command: `{}`\n", meta.command);
+    if res.peer_mismatch_total > 0 {
+        let _ = writeln!(
+            s,
+            "**Peers** ({}) returned {} results that differ from brute force: obvhs traverses \
+             with its own box tests, which lose ties at shared edges and some grazing or \
+             very-near hits. Reported in the `mismatches` column and `mismatches.txt`, not a \
+             failure of the run.\n",
+            crate::index::PEERS.join(", "),
+            res.peer_mismatch_total
+        );
+    }
     if res.mismatch_total == 0 {
         let _ = writeln!(
             s,
-            "**Verification: passed.** Every index returned brute force's hits bit for bit on the \
-             verified rays, and all indices agreed with each other on every ray.\n"
+            "**Verification: passed.** Every one of our indices returned brute force's hits bit \
+             for bit on the verified rays, and they agreed with each other on every ray.\n"
         );
     } else {
         let _ = writeln!(

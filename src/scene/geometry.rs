@@ -3,6 +3,7 @@
 //! kernel, so a triangle-only scene never pays for a sphere branch and the kernel choice costs no
 //! dispatch.
 
+use crate::geometry::clip::triangle_clipped_bounds;
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
 use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
@@ -37,13 +38,43 @@ pub trait Geometry: Clone + Send + Sync + 'static {
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32>;
     /// Conservative overlap of the primitive with a closed box (never a false "no").
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool;
-    /// Bounds of the part of the primitive inside `cell` (for kd-tree "perfect splits");
-    /// by default the overlap of the two boxes, which is conservative.
+    /// Bounds of the part of the primitive inside `cell` (for kd-tree "perfect splits"):
+    /// conservative (contains the exact part, rounding included), empty when they do not meet.
+    /// By default the overlap of the two boxes; triangles are clipped to the box.
     fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
         self.bounds(prim).intersection(*cell)
     }
     /// Unit geometric normal at the hit (final hit only).
     fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A;
+    /// The interval `[min, max]` of `dir . p` over the primitive's points (its extent along
+    /// `dir`, for classifying it against an arbitrary plane), up to the rounding of a dot
+    /// product (callers pad). By default from the corners of its bounds.
+    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
+        let b = self.bounds(prim);
+        let up = dir.cmpge(Vec3A::ZERO);
+        (
+            dir.dot(Vec3A::select(up, b.min, b.max)),
+            dir.dot(Vec3A::select(up, b.max, b.min)),
+        )
+    }
+    /// The primitive's own plane `(unit normal, offset)`, `normal . p = offset` on it (candidate
+    /// planes of autopartition BSPs); `None` for curved or zero-area primitives.
+    fn own_plane(&self, _prim: u32) -> Option<(Vec3A, f32)> {
+        None
+    }
+}
+
+/// Extent of a triangle along `dir` (see [`Geometry::extent_along`]).
+#[inline]
+fn triangle_extent(t: &Triangle, dir: Vec3A) -> (f32, f32) {
+    let d = t.v.map(|v| dir.dot(v));
+    (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]))
+}
+
+/// A triangle's own plane (see [`Geometry::own_plane`]).
+fn triangle_plane(t: &Triangle) -> Option<(Vec3A, f32)> {
+    let n = t.normal();
+    (n != Vec3A::ZERO).then(|| (n, n.dot(t.v[0])))
 }
 
 /// Clamps a kernel's `t` into the slab interval of `bounds` and applies the `[t_min, t_max]`
@@ -134,6 +165,15 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
         triangle_overlaps_box(&self.tris[prim as usize], cell)
     }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        triangle_clipped_bounds(&self.tris[prim as usize], cell)
+    }
+    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
+        triangle_extent(&self.tris[prim as usize], dir)
+    }
+    fn own_plane(&self, prim: u32) -> Option<(Vec3A, f32)> {
+        triangle_plane(&self.tris[prim as usize])
+    }
     fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
         self.tris[prim as usize].normal()
     }
@@ -192,6 +232,15 @@ impl<K: TriangleKernel> Geometry for Mixed<K> {
         match self.tris.get(i) {
             Some(t) => triangle_overlaps_box(t, cell),
             None => sphere_overlaps_box(&self.spheres[i - self.tris.len()], cell),
+        }
+    }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        let i = prim as usize;
+        match self.tris.get(i) {
+            Some(t) => triangle_clipped_bounds(t, cell),
+            None => self.spheres[i - self.tris.len()]
+                .bounds()
+                .intersection(*cell),
         }
     }
     fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {

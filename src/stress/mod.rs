@@ -20,9 +20,7 @@ use std::sync::Arc;
 use std::sync::mpsc;
 use std::time::Duration;
 
-/// Indices that are peers, not ours (obvhs): their mismatches are reported, and callers decide
-/// whether they fail a run. The one list of such exceptions.
-pub const PEERS: &[&str] = &["obvhs-bvh2", "obvhs-cwbvh"];
+pub use crate::index::PEERS;
 
 /// What to run.
 #[derive(Debug, Clone)]

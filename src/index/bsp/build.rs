@@ -1,0 +1,332 @@
+//! General BSP construction: at each node a handful of candidate planes (axis planes at
+//! quantiles of the primitives' bounds, and the own planes of sampled triangles,
+//! autopartition-style) are scored by a cost estimate and the cheapest one splits the node.
+//!
+//! Axis planes: the kd-tree's full SAH sweep over perfect-split candidates (optionally also
+//! `axis_candidates` quantile positions). General planes: the cost estimate is the SAH
+//! `traversal + intersect * (A(below) N(below) + A(above) N(above)) / A` (with the same
+//! empty-space bonus) over the bounding boxes of the cells. Each node keeps a box around its convex cell (the
+//! parent's box cut by the plane, [`box_halfspace_bounds`]); we do not track the cells' exact
+//! polyhedra, so areas are those of the boxes, an estimate of the exact cell-area SAH of Ize,
+//! Wald & Parker (2008).
+//!
+//! Classification is conservative: a primitive goes below a plane when its extent along the
+//! normal, grown by `pad`, starts below the offset, and above when it ends above it; within
+//! `pad` of the plane (touching it, lying in it, or rounding near it) it goes to both sides.
+//!
+//! Build time is `O(candidates * N)` per level: the candidate counts cap it.
+
+use super::node::{BspNode, MAX_LINK};
+use crate::geometry::Aabb;
+use crate::geometry::clip::box_halfspace_bounds;
+use crate::index::BuildError;
+use crate::index::kdtree::sweep::{Weights, best_axis_split};
+use crate::scene::Geometry;
+use glam::Vec3A;
+
+/// Weights and limits (validated by the caller).
+pub(super) struct Limits {
+    pub intersect: f32,
+    pub traversal: f32,
+    pub empty_bonus: f32,
+    pub sweep: bool,
+    pub axis_candidates: u32,
+    pub plane_candidates: u32,
+    pub max_depth: u32,
+    pub leaf_size: u32,
+}
+
+/// A primitive in a node and conservative bounds of its part there.
+#[derive(Debug, Clone, Copy)]
+struct Ref {
+    prim: u32,
+    b: Aabb,
+}
+
+/// A candidate plane `normal . p = offset`; `axis` when the normal is a unit axis.
+#[derive(Debug, Clone, Copy)]
+struct Plane {
+    normal: Vec3A,
+    offset: f32,
+    axis: Option<usize>,
+}
+
+pub(super) struct Built {
+    pub nodes: Vec<BspNode>,
+    pub ids: Vec<u32>,
+    pub depth: usize,
+    pub leaves: usize,
+    pub empty_leaves: usize,
+    pub axis_splits: usize,
+}
+
+struct Builder<'a, G: Geometry> {
+    geom: &'a G,
+    limits: &'a Limits,
+    pad: f32,
+    out: Built,
+}
+
+pub(super) fn build<G: Geometry>(
+    geom: &G,
+    root: Aabb,
+    pad: f32,
+    limits: &Limits,
+) -> Result<Built, BuildError> {
+    let refs = (0..geom.len() as u32)
+        .map(|prim| Ref {
+            prim,
+            b: geom.bounds(prim),
+        })
+        .collect();
+    let mut b = Builder {
+        geom,
+        limits,
+        pad,
+        out: Built {
+            nodes: Vec::new(),
+            ids: Vec::new(),
+            depth: 0,
+            leaves: 0,
+            empty_leaves: 0,
+            axis_splits: 0,
+        },
+    };
+    b.node(refs, root, 0)?;
+    Ok(b.out)
+}
+
+fn too_big() -> BuildError {
+    BuildError::Failed {
+        index: "bsp".into(),
+        message:
+            "too many nodes or references for 31-bit links; raise leaf_size or lower max_depth"
+                .into(),
+    }
+}
+
+impl<G: Geometry> Builder<'_, G> {
+    /// Builds the subtree of a cell whose bounding box is `cell` (a box around the convex cell:
+    /// axis planes shrink it, general planes leave it).
+    fn node(&mut self, refs: Vec<Ref>, cell: Aabb, depth: u32) -> Result<(), BuildError> {
+        let at = self.out.nodes.len();
+        if at as u64 > MAX_LINK as u64 {
+            return Err(too_big());
+        }
+        let plane = if refs.len() as u32 <= self.limits.leaf_size || depth >= self.limits.max_depth
+        {
+            None
+        } else {
+            self.best_plane(&refs, &cell)
+        };
+        let Some(plane) = plane else {
+            return self.leaf(&refs, depth);
+        };
+        let (below_cell, above_cell) = self.child_cells(&cell, &plane);
+        self.out.axis_splits += plane.axis.is_some() as usize;
+        let (below, above) = self.classify(refs, &plane, &below_cell, &above_cell);
+        self.out.nodes.push(BspNode::leaf(0, 0)); // placeholder, patched below
+        self.node(below, below_cell, depth + 1)?;
+        let above_at = self.out.nodes.len() as u32;
+        self.node(above, above_cell, depth + 1)?;
+        self.out.nodes[at] = BspNode::interior(plane.normal, plane.offset, above_at);
+        Ok(())
+    }
+
+    fn leaf(&mut self, refs: &[Ref], depth: u32) -> Result<(), BuildError> {
+        let o = &mut self.out;
+        if refs.len() as u64 > MAX_LINK as u64 || o.ids.len() + refs.len() > u32::MAX as usize {
+            return Err(too_big());
+        }
+        let first = o.ids.len();
+        o.ids.extend(refs.iter().map(|r| r.prim));
+        o.ids[first..].sort_unstable();
+        o.nodes.push(BspNode::leaf(first as u32, refs.len() as u32));
+        o.leaves += 1;
+        o.empty_leaves += refs.is_empty() as usize;
+        o.depth = o.depth.max(depth as usize + 1);
+        Ok(())
+    }
+
+    /// Boxes around the two children of a cell (grown by `pad` for a general plane, whose cut
+    /// is rounded).
+    fn child_cells(&self, cell: &Aabb, p: &Plane) -> (Aabb, Aabb) {
+        if let Some(a) = p.axis {
+            let (mut below, mut above) = (*cell, *cell);
+            below.max[a] = p.offset;
+            above.min[a] = p.offset;
+            return (below, above);
+        }
+        let grow = |b: Aabb| {
+            Aabb::new(
+                b.min - Vec3A::splat(self.pad),
+                b.max + Vec3A::splat(self.pad),
+            )
+            .intersection(*cell)
+        };
+        (
+            grow(box_halfspace_bounds(cell, p.normal, p.offset, true)),
+            grow(box_halfspace_bounds(cell, p.normal, p.offset, false)),
+        )
+    }
+
+    /// `(below, above)`: the sides a reference goes to (at least one).
+    #[inline]
+    fn sides(&self, r: &Ref, p: &Plane) -> (bool, bool) {
+        let (lo, hi) = match p.axis {
+            Some(a) => (r.b.min[a], r.b.max[a]),
+            None => self.geom.extent_along(r.prim, p.normal),
+        };
+        let above = hi + self.pad > p.offset;
+        let below = lo - self.pad < p.offset || !above;
+        (below, above)
+    }
+
+    /// Axis planes at quantiles of the references' padded bounds (perfect-split positions,
+    /// strictly inside the cell) and the
+    /// own planes of references sampled evenly.
+    fn candidates(&self, refs: &[Ref], cell: &Aabb) -> Vec<Plane> {
+        let per_axis = self.limits.axis_candidates as usize;
+        let own = self.limits.plane_candidates as usize;
+        let mut planes = Vec::with_capacity(3 * per_axis + own);
+        let mut positions: Vec<f32> = Vec::with_capacity(refs.len());
+        for axis in 0..3 {
+            positions.clear();
+            positions.extend(refs.iter().map(|r| r.b.min[axis] - self.pad));
+            positions.extend(refs.iter().map(|r| r.b.max[axis] + self.pad));
+            positions.sort_unstable_by(f32::total_cmp);
+            for q in 1..=per_axis {
+                let s = positions[q * (positions.len() - 1) / (per_axis + 1)];
+                if s > cell.min[axis] && s < cell.max[axis] {
+                    let mut normal = Vec3A::ZERO;
+                    normal[axis] = 1.0;
+                    planes.push(Plane {
+                        normal,
+                        offset: s,
+                        axis: Some(axis),
+                    });
+                }
+            }
+        }
+        let step = refs.len().checked_div(own).unwrap_or(1).max(1);
+        for r in refs.iter().step_by(step).take(own) {
+            if let Some((normal, offset)) = self.geom.own_plane(r.prim) {
+                planes.push(Plane {
+                    normal,
+                    offset,
+                    axis: None,
+                });
+            }
+        }
+        planes
+    }
+
+    /// The cheapest plane, if cheaper than a leaf and separating something: the best axis
+    /// plane of the full SAH sweep (as in the kd-tree, or at `axis_candidates` quantiles when
+    /// `sweep` is off), against the own planes of sampled primitives.
+    fn best_plane(&self, refs: &[Ref], cell: &Aabb) -> Option<Plane> {
+        let area = cell.surface_area();
+        if area <= 0.0 || !area.is_finite() {
+            return None;
+        }
+        let l = self.limits;
+        let n = refs.len();
+        let mut best = None;
+        let mut best_cost = l.intersect * n as f32;
+        if l.sweep {
+            let w = Weights {
+                intersect: l.intersect,
+                traversal: l.traversal,
+                empty_bonus: l.empty_bonus,
+            };
+            let mut events = Vec::new();
+            if let Some((axis, s, cost)) =
+                best_axis_split(n, |i| refs[i].b, cell, self.pad, &w, &mut events)
+            {
+                let mut normal = Vec3A::ZERO;
+                normal[axis] = 1.0;
+                best_cost = cost;
+                best = Some(Plane {
+                    normal,
+                    offset: s,
+                    axis: Some(axis),
+                });
+            }
+        }
+        for p in self.candidates(refs, cell) {
+            let (mut nb, mut na) = (0usize, 0usize);
+            for r in refs {
+                let (below, above) = self.sides(r, &p);
+                nb += below as usize;
+                na += above as usize;
+            }
+            if nb == n && na == n {
+                continue; // separates nothing
+            }
+            let (cb, ca) = self.child_cells(cell, &p);
+            let bonus = if nb == 0 || na == 0 {
+                1.0 - l.empty_bonus
+            } else {
+                1.0
+            };
+            let cost = l.traversal
+                + l.intersect
+                    * bonus
+                    * (cb.surface_area() * nb as f32 + ca.surface_area() * na as f32)
+                    / area;
+            if cost < best_cost {
+                best_cost = cost;
+                best = Some(p);
+            }
+        }
+        best
+    }
+
+    /// Sends each reference to its side(s); references on both sides of an axis plane are
+    /// clipped again to each child's box (grown by `pad`).
+    fn classify(
+        &self,
+        refs: Vec<Ref>,
+        p: &Plane,
+        below_cell: &Aabb,
+        above_cell: &Aabb,
+    ) -> (Vec<Ref>, Vec<Ref>) {
+        let grow = |c: &Aabb| {
+            Aabb::new(
+                c.min - Vec3A::splat(self.pad),
+                c.max + Vec3A::splat(self.pad),
+            )
+        };
+        let (below_clip, above_clip) = (grow(below_cell), grow(above_cell));
+        let (mut below, mut above) = (Vec::new(), Vec::new());
+        for r in refs {
+            match self.sides(&r, p) {
+                (true, true) if p.axis.is_some() => {
+                    for (clip, out) in [(&below_clip, &mut below), (&above_clip, &mut above)] {
+                        let b = self.geom.clipped_bounds(r.prim, clip);
+                        let b = if b.is_empty() {
+                            self.geom.bounds(r.prim).intersection(*clip)
+                        } else {
+                            b
+                        };
+                        if !b.is_empty() {
+                            out.push(Ref { prim: r.prim, b });
+                        }
+                    }
+                }
+                (true, true) => {
+                    for (clip, out) in [(&below_clip, &mut below), (&above_clip, &mut above)] {
+                        let b = r.b.intersection(*clip);
+                        out.push(Ref {
+                            prim: r.prim,
+                            b: if b.is_empty() { r.b } else { b },
+                        });
+                    }
+                }
+                (true, false) => below.push(r),
+                _ => above.push(r),
+            }
+        }
+        (below, above)
+    }
+}

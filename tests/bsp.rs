@@ -1,0 +1,195 @@
+//! The general BSP returns brute force's hits bit for bit: on the agreement scenes, on rays in
+//! and near its split planes (axis planes exactly, general planes to rounding) and through
+//! their crossings, and on degenerate input; it tests each primitive at most once per ray; bad
+//! parameters are typed errors.
+mod common;
+mod partition_kit;
+
+use accelbench::geometry::triangle::Watertight;
+use accelbench::geometry::{Ray, TriangleKernelKind};
+use accelbench::index::{Bsp, BuildError, Index, IndexSpec, build_index, build_index_on};
+use accelbench::rays::SplitMix64;
+use accelbench::scene::{Scene, Triangles, generators};
+use glam::{Vec3, Vec3A};
+use partition_kit::*;
+use std::sync::Arc;
+
+fn bsp_on(scene: &Scene, params: &str) -> Bsp {
+    let spec: IndexSpec = format!("bsp{params}").parse().unwrap();
+    let params = accelbench::index::parse_params::<Bsp>(&spec).unwrap();
+    let geom = Triangles::<Watertight>::new(Arc::from(scene.triangles.as_slice()));
+    build_index_on::<Bsp, _>("bsp", geom, params).unwrap().index
+}
+
+/// Axis planes of the tree as `(axis, offset)`; the others as `(normal, offset)`.
+#[allow(clippy::type_complexity)]
+fn planes(tree: &Bsp) -> (Vec<(usize, f32)>, Vec<(Vec3A, f32)>) {
+    let (mut axis, mut general) = (Vec::new(), Vec::new());
+    for (n, d) in tree.split_planes() {
+        match (0..3).find(|&a| n[a] == 1.0) {
+            Some(a) if n.abs().element_sum() == 1.0 => axis.push((a, d)),
+            _ => general.push((n, d)),
+        }
+    }
+    (axis, general)
+}
+
+/// Rays in general planes (origin projected on the plane, direction projected into it) and
+/// through the crossing lines of two planes (aimed at a point projected on both).
+fn rays_in_general_planes(planes: &[(Vec3A, f32)], scene: &Scene, per_plane: usize) -> Vec<Ray> {
+    let b = scene.bounds();
+    let mut rng = SplitMix64::new(21);
+    let mut rays = Vec::new();
+    let project = |p: Vec3A, (n, d): (Vec3A, f32)| p - n * (n.dot(p) - d);
+    for (i, &pl) in planes.iter().enumerate() {
+        for _ in 0..per_plane {
+            let o = project(Vec3A::from(point_near(&b, &mut rng)), pl);
+            let dir = Vec3A::from(direction(&mut rng));
+            let dir = dir - pl.0 * pl.0.dot(dir);
+            if let Ok(r) = Ray::infinite(Vec3::from(o), Vec3::from(dir)) {
+                rays.push(r);
+            }
+            // Through a point on this plane and the next one (alternating projections).
+            let other = planes[(i + 1) % planes.len()];
+            let mut p = Vec3A::from(point_near(&b, &mut rng));
+            for _ in 0..20 {
+                p = project(project(p, pl), other);
+            }
+            let from = Vec3A::from(point_near(&b, &mut rng));
+            if let Ok(r) = Ray::infinite(Vec3::from(from), Vec3::from(p - from)) {
+                rays.push(r);
+            }
+            let along = pl.0.cross(other.0);
+            if let Ok(r) = Ray::infinite(Vec3::from(p), Vec3::from(along)) {
+                rays.push(r);
+            }
+        }
+    }
+    rays
+}
+
+#[test]
+fn agrees_with_brute_force_everywhere() {
+    common::assert_agrees_everywhere("bsp", 1500);
+}
+
+#[test]
+fn agrees_with_other_parameters() {
+    let scene = generators::generate("stadium", 3000, 3).unwrap();
+    let rays = common::agreement_rays(&scene, 1500);
+    for spec in [
+        "bsp:sweep=false,axis_candidates=1,plane_candidates=0",
+        "bsp:sweep=false,plane_candidates=30,leaf_size=1",
+        "bsp:max_depth=3",
+    ] {
+        common::assert_agrees(spec, &scene, &rays);
+    }
+}
+
+#[test]
+fn rays_in_split_planes_and_through_their_crossings() {
+    for (name, params) in [
+        ("icosphere", ""),
+        ("soup", ""),
+        ("stadium", ""),
+        ("room", ""),
+        // Only primitives' own planes: a pure autopartition.
+        ("terrain", ":sweep=false"),
+        ("soup", ":sweep=false"),
+    ] {
+        let scene = generators::generate(name, 2000, 5).unwrap();
+        let tree = bsp_on(&scene, params);
+        let (axis, general) = planes(&tree);
+        assert!(axis.len() + general.len() > 0, "{name}: the tree splits");
+        if params.contains("sweep=false") {
+            assert!(
+                axis.is_empty() && !general.is_empty(),
+                "{name}: autopartition"
+            );
+        }
+        let b = scene.bounds();
+        let mut rays = rays_in_axis_planes(&axis, &b, 4);
+        rays.extend(rays_through_plane_crossings(&axis, &b, 300));
+        let sample: Vec<_> = general
+            .iter()
+            .step_by(general.len() / 80 + 1)
+            .copied()
+            .collect();
+        rays.extend(rays_in_general_planes(&sample, &scene, 8));
+        common::assert_agrees("bsp", &scene, &rays);
+    }
+}
+
+#[test]
+fn degenerate_input_terminates_and_agrees() {
+    for scene in degenerate_scenes() {
+        let tree = bsp_on(&scene, "");
+        assert!(tree.info().depth <= 64, "{}", scene.name);
+        common::assert_agrees("bsp", &scene, &common::agreement_rays(&scene, 800));
+        let (axis, general) = planes(&tree);
+        let mut rays = rays_in_axis_planes(&axis, &scene.bounds(), 2);
+        rays.extend(rays_in_general_planes(&general, &scene, 2));
+        rays.truncate(3000);
+        common::assert_agrees("bsp", &scene, &rays);
+    }
+}
+
+#[test]
+fn each_primitive_tested_at_most_once_per_ray() {
+    for name in ["soup", "stadium", "slivers"] {
+        let scene = generators::generate(name, 2000, 2).unwrap();
+        let geom = Recording::new(&scene);
+        let tree = Bsp::build(&geom, &Default::default()).unwrap();
+        assert!(tree.info().prim_refs > scene.triangles.len(), "{name}");
+        let rays = common::agreement_rays(&scene, 400);
+        assert_each_primitive_once(&tree, &geom, &rays);
+    }
+}
+
+#[test]
+fn structure_figures_are_consistent() {
+    let scene = generators::generate("icosphere", 5000, 1).unwrap();
+    let info = bsp_on(&scene, "").info();
+    assert_eq!(info.nodes, 2 * info.leaves - 1, "a full binary tree");
+    assert!(info.prim_refs >= scene.triangles.len());
+    assert_eq!(info.memory_bytes, info.nodes * 24 + info.prim_refs * 4);
+    assert!(bsp_on(&scene, ":max_depth=4").info().depth <= 5);
+}
+
+#[test]
+fn bad_parameters_are_typed_errors() {
+    let g = generators::generate("icosphere", 100, 1)
+        .unwrap()
+        .geometry();
+    for (spec, says) in [
+        ("bsp:intersect_cost=0.0", "intersect_cost"),
+        ("bsp:traversal_cost=inf", "traversal_cost"),
+        ("bsp:sweep=false,plane_candidates=0", "candidates"),
+        ("bsp:plane_candidates=100000", "candidates"),
+        ("bsp:max_depth=1000", "max_depth"),
+        ("bsp:leaf_size=0", "leaf_size"),
+        ("bsp:empty_bonus=-0.5", "empty_bonus"),
+        ("bsp:planes=3", "unknown field"),
+    ] {
+        let spec: IndexSpec = spec.parse().unwrap();
+        let err = build_index(&spec, &g, TriangleKernelKind::Watertight)
+            .err()
+            .unwrap_or_else(|| panic!("{spec} must fail"));
+        assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
+        assert!(err.to_string().contains(says), "{spec}: {err}");
+    }
+}
+
+/// The bunny: agreement on the protocol sets (small) and the build time for the docs.
+#[test]
+#[ignore = "slow: the full bunny; run with --ignored --nocapture"]
+fn bunny_agrees_and_reports_build_time() {
+    let Some(bunny) = common::bunny() else {
+        eprintln!("bunny not found, skipped");
+        return;
+    };
+    let start = std::time::Instant::now();
+    let tree = bsp_on(&bunny, "");
+    eprintln!("bsp bunny build: {:?}, {:?}", start.elapsed(), tree.info());
+    common::assert_agrees("bsp", &bunny, &common::agreement_rays(&bunny, 2000));
+}

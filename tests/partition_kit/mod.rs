@@ -1,0 +1,209 @@
+//! Test helpers shared by the binary space partitions (kd-tree, BSP): degenerate scenes, rays
+//! in and through split planes, and a geometry that records every kernel call.
+#![allow(dead_code)]
+
+use accelbench::geometry::triangle::Watertight;
+use accelbench::geometry::{Aabb, Ray, Triangle};
+use accelbench::index::{Counters, Index};
+use accelbench::rays::SplitMix64;
+use accelbench::scene::{Geometry, Scene, Triangles};
+use glam::{Vec3, Vec3A};
+use std::sync::{Arc, Mutex};
+
+/// Scenes that have broken naive builders: all one triangle, zero-area triangles (points and
+/// segments), many triangles sharing one centroid, all in one plane.
+pub fn degenerate_scenes() -> Vec<Scene> {
+    let t = Triangle::new(
+        Vec3A::new(0.0, 0.0, 0.0),
+        Vec3A::new(1.0, 0.0, 0.2),
+        Vec3A::new(0.0, 1.0, 0.4),
+    );
+    let duplicates = vec![t; 500];
+    let mut zero_area = Vec::new();
+    for i in 0..300 {
+        let p = Vec3A::new(i as f32 * 0.01, (i % 7) as f32 * 0.1, 0.3);
+        zero_area.push(Triangle::new(p, p, p));
+        zero_area.push(Triangle::new(p, p + Vec3A::X * 0.05, p + Vec3A::X * 0.1));
+    }
+    zero_area.push(t);
+    let mut one_centroid = Vec::new();
+    for i in 0..400 {
+        let a = i as f32 * 0.7;
+        let (s, c) = a.sin_cos();
+        let u = Vec3A::new(c, s, 0.3 * s);
+        let v = Vec3A::new(-s * 0.5, c * 0.5, 0.9);
+        // Centroid exactly at the origin: (u + v + (-u - v)) / 3.
+        one_centroid.push(Triangle::new(u, v, -u - v));
+    }
+    let mut flat = Vec::new();
+    for i in 0..20 {
+        for j in 0..20 {
+            let p = Vec3A::new(i as f32, j as f32, 0.0);
+            flat.push(Triangle::new(p, p + Vec3A::X, p + Vec3A::Y));
+            flat.push(Triangle::new(
+                p + Vec3A::X,
+                p + Vec3A::ONE.with_z(0.0),
+                p + Vec3A::Y,
+            ));
+        }
+    }
+    vec![
+        Scene::from_triangles("all_duplicates", duplicates),
+        Scene::from_triangles("zero_area", zero_area),
+        Scene::from_triangles("one_centroid", one_centroid),
+        Scene::from_triangles("one_plane", flat),
+    ]
+}
+
+/// A point uniformly in `b` grown by half its extent.
+pub fn point_near(b: &Aabb, rng: &mut SplitMix64) -> Vec3 {
+    let e = Vec3::from(b.extent()).max(Vec3::splat(1e-3));
+    let lo = Vec3::from(b.min) - e * 0.5;
+    let r = Vec3::new(
+        rng.next_unit() as f32,
+        rng.next_unit() as f32,
+        rng.next_unit() as f32,
+    );
+    lo + r * e * 2.0
+}
+
+/// A random unit direction.
+pub fn direction(rng: &mut SplitMix64) -> Vec3 {
+    loop {
+        let d = Vec3::new(
+            rng.next_unit() as f32 * 2.0 - 1.0,
+            rng.next_unit() as f32 * 2.0 - 1.0,
+            rng.next_unit() as f32 * 2.0 - 1.0,
+        );
+        if d.length_squared() > 0.01 && d.length_squared() <= 1.0 {
+            return d.normalize();
+        }
+    }
+}
+
+/// Rays lying exactly in the axis plane `p[axis] = s` (origin on it, direction component `+0.0`
+/// or `-0.0`), `per_plane` per plane.
+pub fn rays_in_axis_planes(planes: &[(usize, f32)], b: &Aabb, per_plane: usize) -> Vec<Ray> {
+    let mut rng = SplitMix64::new(11);
+    let mut rays = Vec::new();
+    for &(axis, s) in planes {
+        for k in 0..per_plane {
+            let mut o = point_near(b, &mut rng);
+            o[axis] = s;
+            let mut d = direction(&mut rng);
+            d[axis] = if k.is_multiple_of(2) { 0.0 } else { -0.0 };
+            if let Ok(r) = Ray::infinite(o, d) {
+                rays.push(r);
+            }
+        }
+    }
+    rays
+}
+
+/// Rays through the lines where two axis planes of different axes meet: along the line, from a
+/// point on it in a random direction, and aimed at a point on it from outside.
+pub fn rays_through_plane_crossings(planes: &[(usize, f32)], b: &Aabb, n: usize) -> Vec<Ray> {
+    let mut rng = SplitMix64::new(12);
+    let mut rays = Vec::new();
+    if planes.is_empty() {
+        return rays;
+    }
+    for _ in 0..n {
+        let (a1, s1) = planes[(rng.next_u64() % planes.len() as u64) as usize];
+        let pick = planes
+            .iter()
+            .cycle()
+            .skip((rng.next_u64() % planes.len() as u64) as usize)
+            .take(planes.len())
+            .find(|(a, _)| *a != a1);
+        let Some(&(a2, s2)) = pick else {
+            continue;
+        };
+        let mut p = point_near(b, &mut rng);
+        p[a1] = s1;
+        p[a2] = s2;
+        let mut along = Vec3::ZERO;
+        along[3 - a1 - a2] = if rng.next_u64().is_multiple_of(2) {
+            1.0
+        } else {
+            -1.0
+        };
+        let from = point_near(b, &mut rng);
+        for r in [
+            Ray::infinite(p, along),
+            Ray::infinite(p, direction(&mut rng)),
+            Ray::infinite(from, p - from),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            rays.push(r);
+        }
+    }
+    rays
+}
+
+/// Triangles with the watertight kernel that record every kernel call.
+#[derive(Clone)]
+pub struct Recording {
+    inner: Triangles<Watertight>,
+    pub calls: Arc<Mutex<Vec<u32>>>,
+}
+
+impl Recording {
+    pub fn new(scene: &Scene) -> Recording {
+        Recording {
+            inner: Triangles::new(Arc::from(scene.triangles.as_slice())),
+            calls: Arc::default(),
+        }
+    }
+}
+
+impl Geometry for Recording {
+    fn len(&self) -> usize {
+        self.inner.len()
+    }
+    fn bounds(&self, prim: u32) -> Aabb {
+        self.inner.bounds(prim)
+    }
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
+        self.calls.lock().unwrap().push(prim);
+        self.inner.intersect(prim, ray, t_max)
+    }
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
+        self.inner.overlaps_box(prim, cell)
+    }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        self.inner.clipped_bounds(prim, cell)
+    }
+    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
+        self.inner.normal(prim, ray, t)
+    }
+}
+
+/// Asserts that `index` tests each primitive at most once per ray (closest and any hit), and
+/// that the `Counters` count exactly the kernel calls made.
+pub fn assert_each_primitive_once<I: Index>(index: &I, geom: &Recording, rays: &[Ray]) {
+    let mut repeated = 0;
+    let mut total = 0;
+    for ray in rays {
+        for query in 0..2 {
+            geom.calls.lock().unwrap().clear();
+            let mut c = Counters::default();
+            if query == 0 {
+                index.closest_hit(geom, ray, &mut c);
+            } else {
+                index.any_hit(geom, ray, &mut c);
+            }
+            let mut calls = geom.calls.lock().unwrap().clone();
+            assert_eq!(c.prim_tests, calls.len() as u64, "counters match the calls");
+            total += calls.len();
+            calls.sort_unstable();
+            let n = calls.len();
+            calls.dedup();
+            repeated += n - calls.len();
+        }
+    }
+    assert!(total > 0, "the rays tested something");
+    assert_eq!(repeated, 0, "primitives tested twice in one ray");
+}
