@@ -345,7 +345,10 @@ fn run_set(
         }
         let (counters, hits) = all_pool.install(|| counting_pass(index.as_ref(), query, rays));
         let mut mismatches = 0usize;
-        let mut record = |against: &str, m: Vec<Mismatch>, res: &mut SuiteResult| {
+        let mut record = |against: &str, mut m: Vec<Mismatch>, res: &mut SuiteResult| {
+            if query == Query::Any {
+                m.iter_mut().for_each(|x| x.query = "any");
+            }
             mismatches += m.len();
             if PEERS.contains(&index.name()) {
                 res.peer_mismatch_total += m.len();
