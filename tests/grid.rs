@@ -299,7 +299,7 @@ fn cli_sweep_writes_csv_and_charts_and_trace_takes_grid() {
     }
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(
-        stdout.contains("fastest:") && stdout.contains("heuristic:"),
+        stdout.contains("fastest:") && stdout.contains("default:"),
         "{stdout}"
     );
 
