@@ -198,18 +198,23 @@ fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
         p.threads
     );
     let rows = with_threads(p.threads, || {
-        run_sweep(&setup, &points, |r| {
-            eprintln!(
-                "  x={:<6} {:<28} cells {:>10}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} cells/ray",
-                r.x,
-                r.spec,
-                r.cells,
-                r.build_ms,
-                r.rays_per_s / 1e6,
-                r.prim_tests_per_ray,
-                r.node_visits_per_ray
-            )
-        })
+        run_sweep(
+            &setup,
+            &points,
+            |r| {
+                eprintln!(
+                    "  x={:<6} {:<28} cells {:>10}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} cells/ray",
+                    r.x,
+                    r.spec,
+                    r.cells,
+                    r.build_ms,
+                    r.rays_per_s / 1e6,
+                    r.prim_tests_per_ray,
+                    r.node_visits_per_ray
+                )
+            },
+            |p, e| eprintln!("  skipped {}: {e}", p.spec),
+        )
     })??;
     let plot = SweepPlot {
         title: format!("grid on {}, {} rays", p.scene.name, a.common.rays.name()),
@@ -287,17 +292,22 @@ fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
         p.threads
     );
     let rows = with_threads(p.threads, || {
-        run_sweep(&setup, &points, |r| {
-            eprintln!(
-                "  {:<44} nodes {:>9}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} nodes/ray",
-                r.spec,
-                r.cells,
-                r.build_ms,
-                r.rays_per_s / 1e6,
-                r.prim_tests_per_ray,
-                r.node_visits_per_ray
-            )
-        })
+        run_sweep(
+            &setup,
+            &points,
+            |r| {
+                eprintln!(
+                    "  {:<44} nodes {:>9}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} nodes/ray",
+                    r.spec,
+                    r.cells,
+                    r.build_ms,
+                    r.rays_per_s / 1e6,
+                    r.prim_tests_per_ray,
+                    r.node_visits_per_ray
+                )
+            },
+            |p, e| eprintln!("  skipped {}: {e}", p.spec),
+        )
     })??;
     let plot = SweepPlot {
         title: format!("{name} on {}, {} rays", p.scene.name, a.common.rays.name()),

@@ -53,7 +53,7 @@ pub struct SweepRow {
 /// Why a sweep could not run.
 #[derive(Debug, Error)]
 pub enum SweepError {
-    #[error("sweep point {spec} (x = {x}): {source}")]
+    #[error("sweep point {spec} (x = {x})")]
     Build {
         spec: String,
         x: f64,
@@ -84,11 +84,13 @@ pub struct SweepSetup<'a> {
 
 /// Runs every point on the current rayon pool (build, timed closest-hit pass, counting pass),
 /// calling `progress` after each, and checks that all points return the first point's hits bit
-/// for bit.
+/// for bit. A point whose build exceeds a structure's limits (e.g. the octree's node cap) is
+/// skipped and reported through `skipped`; bad parameters are an error.
 pub fn run_sweep(
     setup: &SweepSetup<'_>,
     points: &[SweepPoint],
     mut progress: impl FnMut(&SweepRow),
+    mut skipped: impl FnMut(&SweepPoint, &BuildError),
 ) -> Result<Vec<SweepRow>, SweepError> {
     if points.is_empty() || setup.rays.is_empty() {
         return Err(SweepError::Empty);
@@ -96,12 +98,20 @@ pub fn run_sweep(
     let mut reference = None;
     let mut rows = Vec::with_capacity(points.len());
     for p in points {
-        let index =
-            build_index(&p.spec, setup.geom, setup.kernel).map_err(|source| SweepError::Build {
-                spec: p.spec.to_string(),
-                x: p.x,
-                source,
-            })?;
+        let index = match build_index(&p.spec, setup.geom, setup.kernel) {
+            Ok(i) => i,
+            Err(e @ BuildError::Failed { .. }) => {
+                skipped(p, &e);
+                continue;
+            }
+            Err(source) => {
+                return Err(SweepError::Build {
+                    spec: p.spec.to_string(),
+                    x: p.x,
+                    source,
+                });
+            }
+        };
         let (timing, hits) = timed_pass(index.as_ref(), Query::Closest, setup.rays, setup.repeats);
         let (counters, _) = counting_pass(index.as_ref(), Query::Closest, setup.rays);
         match &reference {
@@ -254,7 +264,7 @@ mod tests {
             }))
             .collect();
         let mut seen = 0;
-        let rows = run_sweep(&setup, &points, |_| seen += 1).unwrap();
+        let rows = run_sweep(&setup, &points, |_| seen += 1, |_, _| ()).unwrap();
         assert_eq!((rows.len(), seen), (4, 4));
         assert_eq!(rows[2].cells, 729);
         assert_eq!(rows[3].prim_tests_per_ray, 500.0);
@@ -276,7 +286,7 @@ mod tests {
         assert!(svg.contains("heuristic") && svg.contains("brute"));
         assert!(files.build_chart.exists());
         assert!(matches!(
-            run_sweep(&setup, &[], |_| ()),
+            run_sweep(&setup, &[], |_| (), |_, _| ()),
             Err(SweepError::Empty)
         ));
     }
