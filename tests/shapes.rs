@@ -226,3 +226,35 @@ impl accelbench::scene::GeometryVisitor for CellCheck {
         report
     }
 }
+
+/// The shapes scene renders (Phong, shadows) to byte-identical PNGs through every one of our
+/// indices.
+#[test]
+fn shapes_scene_renders_identically_through_every_index() {
+    use accelbench::geometry::TriangleKernelKind;
+    use accelbench::index::{IndexSpec, build_index};
+    use accelbench::render::{RenderOptions, render_shaded};
+    let scene = generators::generate("shapes", 300, 3).unwrap();
+    let opts = RenderOptions {
+        width: 40,
+        height: 40,
+    };
+    let mut first = None;
+    for name in index_names().into_iter().filter(|n| !PEERS.contains(n)) {
+        let index = build_index(
+            &IndexSpec::named(name),
+            &scene.geometry(),
+            TriangleKernelKind::Watertight,
+        )
+        .unwrap();
+        let img = render_shaded(&scene, index.as_ref(), &opts).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.png");
+        img.write_png(&p).unwrap();
+        let bytes = std::fs::read(&p).unwrap();
+        match &first {
+            None => first = Some(bytes),
+            Some(b) => assert!(*b == bytes, "{name} renders a different image"),
+        }
+    }
+}
