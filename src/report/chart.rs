@@ -287,12 +287,15 @@ pub fn bar_chart(path: &Path, chart: &Chart, groups: &[BarGroup]) -> Result<(), 
     if !lo.is_finite() {
         return Err(ReportError::NoData(chart.title.clone()));
     }
-    // Bars grow from the bottom of the axis (0 on a linear axis).
+    // Bars grow from the bottom of the axis (0 on a linear axis); a third more room on top
+    // keeps the legend clear of the tallest bars.
     let y_range = if chart.log_y {
         let r = padded(lo, hi);
-        r.start.floor()..r.end
+        let start = r.start.floor();
+        start..r.end + (r.end - start) / 3.0
     } else {
-        padded(lo.min(0.0), hi)
+        let r = padded(lo.min(0.0), hi);
+        r.start..r.end + (r.end - r.start) / 3.0
     };
     let base = if chart.log_y { y_range.start } else { 0.0 };
     let root = create_root(path)?;
