@@ -158,7 +158,7 @@ impl SuiteArgs {
             },
             repeats,
             kernel: self.kernel,
-            verify_budget: if q { 200_000_000 } else { 2_000_000_000 },
+            verify_budget: if q { 200_000_000 } else { 500_000_000 },
             brute_timing_budget: if q { 20_000_000 } else { 200_000_000 },
             timed,
         })
