@@ -26,10 +26,10 @@ pub struct SuiteArgs {
     /// ray sets, 3 repeats.
     #[arg(long)]
     pub quick: bool,
-    /// Width and height of the primary image [default: 512, quick 128; the protocol's is 1024].
+    /// Width and height of the primary image [default: 256, quick 128; the protocol's is 1024].
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=8192))]
     pub primary_size: Option<u32>,
-    /// Number of incoherent rays [default: 262144, quick 16384; the protocol's is 1048576].
+    /// Number of incoherent rays [default: 65536, quick 16384; the protocol's is 1048576].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 26)))]
     pub incoherent: Option<u64>,
     /// Primitives of each default built-in scene [default: 20000, quick 4000].
@@ -150,10 +150,10 @@ impl SuiteArgs {
             sets: self.sets(),
             threads,
             sizes: SetSizes {
-                primary_side: self.primary_size.unwrap_or(if q { 128 } else { 512 }),
+                primary_side: self.primary_size.unwrap_or(if q { 128 } else { 256 }),
                 incoherent: self
                     .incoherent
-                    .map_or(if q { 16_384 } else { 262_144 }, |n| n as usize),
+                    .map_or(if q { 16_384 } else { 65_536 }, |n| n as usize),
                 ao_fraction: 0.05,
             },
             repeats,
