@@ -316,7 +316,7 @@ fn run_set(
             format!("all {} rays checked against brute force", rays.len())
         } else {
             format!(
-                "a sample of {} of {} rays (every {}th) checked against brute force",
+                "a sample of {} of {} rays (one in {}) checked against brute force",
                 ref_ids.len(),
                 rays.len(),
                 rays.len().div_ceil(ref_ids.len())
