@@ -117,9 +117,8 @@ fn bad_parameters_are_typed_errors() {
     }
 }
 
-/// The bunny: agreement on the protocol sets (small) and the build time for the docs.
+/// The bunny: agreement on the protocol sets (small); prints the build time (`--nocapture`).
 #[test]
-#[ignore = "slow: the full bunny; run with --ignored --nocapture"]
 fn bunny_agrees_and_reports_build_time() {
     let Some(bunny) = common::bunny() else {
         eprintln!("bunny not found, skipped");
