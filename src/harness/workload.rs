@@ -3,14 +3,15 @@
 //! **shadow** rays toward each point light (any hit), one cosine-distributed **diffuse** bounce
 //! (closest hit), and short **ao** rays (ambient occlusion, any hit).
 //!
-//! Secondary rays leave the surface from [`offset_origin`] (Wächter & Binder) with `t_min = 0`,
-//! so they do not re-hit the surface they leave at any scene scale. Every set is deterministic:
+//! Secondary rays leave the surface from [`offset_origin_scaled`] (Wächter & Binder, with the
+//! near-origin offset relative to the scene's size) with `t_min = 0`, so they do not re-hit the
+//! surface they leave at any scene scale. Every set is deterministic:
 //! the same scene and sizes give the same rays, bit for bit.
 
 use super::timing::Query;
 use crate::camera::CameraError;
 use crate::geometry::{Hit, Ray};
-use crate::rays::spawn::offset_origin;
+use crate::rays::spawn::{offset_origin_scaled, spawn_scale};
 use crate::rays::{SplitMix64, incoherent_rays, primary_rays};
 use crate::scene::Scene;
 use glam::Vec3A;
@@ -87,10 +88,12 @@ pub fn incoherent(scene: &Scene, sizes: &SetSizes) -> Vec<Ray> {
     incoherent_rays(&scene.ray_set_bounds(), sizes.incoherent, 42)
 }
 
-/// A primary hit as a surface point to leave from: the offset origin and the unit normal facing
-/// the side the primary ray came from. `None` for a degenerate (zero-normal) triangle.
+/// A primary hit as a surface point to leave from: the offset origin (scene size `scale`, see
+/// [`offset_origin_scaled`]) and the unit normal facing the side the primary ray came from.
+/// `None` for a degenerate (zero-normal) triangle.
 fn surface(
     scene_geom: &crate::scene::SceneGeometry,
+    scale: f32,
     ray: &Ray,
     hit: &Hit,
 ) -> Option<(Vec3A, Vec3A)> {
@@ -102,7 +105,7 @@ fn surface(
     if n.dot(ray.dir) > 0.0 {
         n = -n;
     }
-    Some((offset_origin(p, n), n))
+    Some((offset_origin_scaled(p, n, scale), n))
 }
 
 /// A cosine-distributed unit direction about the unit normal `n` (Malley's method on the
@@ -136,10 +139,12 @@ pub fn secondary(
         RaySet::Diffuse => 7,
         _ => 11,
     });
-    let ao_len = sizes.ao_fraction * scene.bounds().extent().length();
+    let bounds = scene.bounds();
+    let ao_len = sizes.ao_fraction * bounds.extent().length();
+    let scale = spawn_scale(&bounds);
     let mut out = Vec::new();
     for (ray, hit) in primary.iter().zip(hits) {
-        let Some((o, n)) = hit.as_ref().and_then(|h| surface(&geom, ray, h)) else {
+        let Some((o, n)) = hit.as_ref().and_then(|h| surface(&geom, scale, ray, h)) else {
             continue;
         };
         match set {

@@ -6,7 +6,7 @@ use super::{Image, RenderError, RenderOptions};
 use crate::geometry::{Hit, Ray};
 use crate::index::TraceIndex;
 use crate::rays::SplitMix64;
-use crate::rays::spawn::offset_origin;
+use crate::rays::spawn::{offset_origin_scaled, spawn_scale};
 use crate::scene::{AreaLight, Material, PointLight, Scene};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
@@ -44,6 +44,7 @@ pub fn render_shaded(
         scene,
         index,
         lights: &lights,
+        spawn_scale: spawn_scale(&scene.bounds()),
     };
     let width = opts.width;
     let mut img = Image::new(opts.width, opts.height);
@@ -69,6 +70,8 @@ struct Shader<'a> {
     scene: &'a Scene,
     index: &'a dyn TraceIndex,
     lights: &'a [PointLight],
+    /// Scene size for shadow-ray origins ([`offset_origin_scaled`]).
+    spawn_scale: f32,
 }
 
 impl Shader<'_> {
@@ -88,7 +91,7 @@ impl Shader<'_> {
             p,
             n,
             view,
-            origin: offset_origin(p, n),
+            origin: offset_origin_scaled(p, n, self.spawn_scale),
             material: m,
         };
         let mut c = m.emission + m.ambient * m.color;

@@ -1,7 +1,7 @@
 //! Files and tables of `accelbench stress`: `stress.csv` (one row per case and index),
 //! `self_intersection.csv`, and `stress.md` (the summary the run report includes).
 
-use super::self_intersection::failures_per_method;
+use super::self_intersection::{RESOLVABLE_ULPS, SpawnRow, failures_per_method};
 use super::{PEERS, StressSummary};
 use crate::report::{ReportError, write_csv};
 use std::fmt::Write as _;
@@ -80,39 +80,101 @@ pub fn markdown(s: &StressSummary) -> String {
             Err(e) => writeln!(m, "- FAILED: {}: {e}", b.name),
         };
     }
-    m.push_str(
+    m.push_str(&self_intersection_markdown(&s.self_intersection));
+    m
+}
+
+/// The self-intersection study: one row per scale, offset and gap, one column per method
+/// (`self-hits / missed contacts`), then the failures per method and the verdict.
+pub fn self_intersection_markdown(rows: &[SpawnRow]) -> String {
+    let mut methods: Vec<&str> = Vec::new();
+    for r in rows {
+        if !methods.contains(&r.method.as_str()) {
+            methods.push(&r.method);
+        }
+    }
+    let mut m = String::from(
         "\n## Shadow-ray self-intersection: t_min epsilon against origin offset\n\n\
-         Tilted ground with an occluder 1e-4 (relative) above half of it; epsilon is relative to \
-         the scene size.\n\n\
-         | scale | offset | method | points | self-hit rate | contacts | missed-contact rate |\n\
-         |---|---|---|---|---|---|---|\n",
+         A tilted ground with an occluder `gap` above half of it (gap and epsilon relative to the \
+         scene size). Each cell: self-hits / missed contacts, over `points` surface points of \
+         which `contacts` lie under the occluder. \"gap ulps\": the gap in ulps of the largest \
+         coordinate.\n\n",
     );
-    for r in &s.self_intersection {
+    let _ = write!(
+        m,
+        "| scale | offset | gap | gap ulps | points | contacts | {} |\n|---|---|---|---|---|---|",
+        methods.join(" | ")
+    );
+    m.push_str(&"---|".repeat(methods.len()));
+    m.push('\n');
+    let mut seen: Vec<(u64, u64, u64)> = Vec::new();
+    for r in rows {
+        let key = (r.scale.to_bits(), r.offset.to_bits(), r.gap.to_bits());
+        if seen.contains(&key) {
+            continue;
+        }
+        seen.push(key);
+        let cells: Vec<String> = methods
+            .iter()
+            .map(|name| {
+                rows.iter()
+                    .find(|x| {
+                        (x.scale.to_bits(), x.offset.to_bits(), x.gap.to_bits()) == key
+                            && x.method == *name
+                    })
+                    .map_or("-".to_owned(), |x| {
+                        format!("{} / {}", x.self_hits, x.missed_contacts)
+                    })
+            })
+            .collect();
         let _ = writeln!(
             m,
-            "| {:e} | {:e} | {} | {} | {:.3e} | {} | {:.3e} |",
+            "| {:e} | {:e} | {:e} | {:.0} | {} | {} | {} |",
             r.scale,
             r.offset,
-            r.method,
+            r.gap,
+            r.gap_ulps,
             r.points,
-            r.self_hit_rate,
             r.contacts,
-            r.missed_contact_rate
+            cells.join(" | ")
         );
     }
-    let totals = failures_per_method(&s.self_intersection);
-    m.push_str("\nSelf-hits plus missed contacts over all configurations: ");
-    let parts: Vec<String> = totals.iter().map(|(n, v)| format!("{n}: {v}")).collect();
-    m.push_str(&parts.join(", "));
-    if let Some((best, _)) = totals.iter().min_by_key(|(_, v)| *v) {
-        let _ = writeln!(m, ". Fewest failures: **{best}**.");
+    let totals = failures_per_method(rows);
+    let _ = writeln!(
+        m,
+        "\nPer method: self-hits on every row (they darken every lit surface), and missed \
+         contacts where the gap spans at least {RESOLVABLE_ULPS} ulps (a contact float \
+         coordinates resolve with room to spare) and on every row.\n\n\
+         | method | self-hits | rows with self-hits | missed resolvable contacts | rows | missed contacts, all rows |\n\
+         |---|---|---|---|---|---|"
+    );
+    for t in &totals {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} | {} |",
+            t.method,
+            t.self_hits,
+            t.self_hit_rows,
+            t.missed_resolvable,
+            t.missed_resolvable_rows,
+            t.missed_all
+        );
+    }
+    if let Some(best) = totals.iter().min_by_key(|t| (t.counted(), t.missed_all)) {
+        let _ = writeln!(
+            m,
+            "\nFewest self-hits plus missed resolvable contacts (ties: fewer missed contacts \
+             overall): **{}**.",
+            best.method
+        );
     }
     m.push_str(
         "\nReading the table: an epsilon has to lie between the hit point's rounding error \
-         (which grows with the distance from the origin) and the smallest real gap (here 1e-4 \
-         of the scene), so the best epsilon depends on the scene; the offset needs no tuning \
-         but moves the origin by 256 ulps of its coordinates (1/65536 near the origin), so it \
-         loses contacts closer than that.\n",
+         (which grows with the distance from the origin relative to the scene's size) and the \
+         smallest real gap, so the best epsilon depends on the scene. The offset needs no tuning \
+         far from the origin (256 ulps of the coordinates); near the origin it moves the point by \
+         an absolute 1/65536, too much for a scene a thousandth of a unit across, which the \
+         scaled offset measures in units of the scene's size instead.\n",
     );
     m
 }

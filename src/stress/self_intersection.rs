@@ -1,42 +1,56 @@
 //! Self-intersection of shadow rays: (a) a `t_min` epsilon against (b) the origin offset of
-//! Wächter and Binder ([`crate::rays::spawn::offset_origin`]), measured at several scene scales
-//! and offsets.
+//! Wächter and Binder ([`crate::rays::spawn::offset_origin`], and its scene-relative variant
+//! [`crate::rays::spawn::offset_origin_scaled`]), measured at several scene scales, offsets
+//! from the origin and contact gaps.
 //!
 //! The scene (in local units): a tilted ground square `[0,1]^2` (two triangles, normal not on an
-//! axis) and an occluder square over half of it, parallel at height `GAP = 1e-4` (a real contact,
-//! like an object resting almost on the floor), scaled by `scale` and translated by `offset` on
-//! every axis. Surface points come from rays hitting the ground from below, from 4 scene sizes
-//! away (so they carry the usual rounding), and shadow rays leave towards a directional light.
+//! axis) and an occluder square over half of it, parallel at height `gap` (a real contact, like
+//! an object resting almost on the floor), scaled by `scale` and translated by `offset` on every
+//! axis. Surface points come from rays hitting the ground from below, from 4 scene sizes away
+//! (so they carry the usual rounding), and shadow rays leave towards a directional light.
 //! - self-hit: the shadow ray hits the ground it leaves;
 //! - missed contact: the point is under the occluder (by exact local geometry, away from its
 //!   border) but the shadow ray does not hit the occluder.
+//!
+//! A gap of only a few ulps of the coordinates cannot be told from the hit point's own rounding
+//! by any method; each row says how many ulps its gap spans, and the verdict counts only
+//! [resolvable](RESOLVABLE_ULPS) gaps.
 
 use crate::geometry::triangle::Watertight;
 use crate::geometry::{Ray, Triangle, TriangleKernel, TriangleKernelKind};
 use crate::index::{BuildError, IndexSpec, build_index};
 use crate::rays::SplitMix64;
-use crate::rays::spawn::{SpawnMethod, offset_origin};
+use crate::rays::spawn::{SpawnMethod, offset_origin, offset_origin_scaled};
 use crate::scene::SceneGeometry;
 use glam::{DVec3, Vec3, Vec3A};
 use serde::Serialize;
 use std::sync::Arc;
 
-/// Height of the occluder over the ground, in local units (relative to the scene size).
-pub const GAP: f64 = 1e-4;
+/// Heights of the occluder over the ground, in local units (relative to the scene size).
+pub const GAPS: &[f64] = &[1e-2, 1e-3, 1e-4, 1e-5];
 
-/// `(scale, offset)` pairs measured: scales `1e-3 .. 1e4` at the origin, then far offsets with
-/// the scene large enough that the gap spans at least a few ulps.
+/// `(scale, offset)` pairs measured: scales `1e-3 .. 1e4` at the origin, then scenes far from
+/// the origin relative to their size.
 pub const CONFIGS: &[(f64, f64)] = &[
     (1e-3, 0.0),
     (1.0, 0.0),
     (1e3, 0.0),
     (1e4, 0.0),
+    (1e-2, 1.0),
+    (1.0, 1e2),
     (10.0, 1e3),
     (1e3, 1e5),
     (1e5, 1e7),
+    (0.1, 1e3),
+    (1.0, 1e4),
 ];
 
-/// The methods compared: epsilons (relative to the scene size) and the offset.
+/// A gap counts in the verdict when it spans at least this many ulps of the scene's largest
+/// coordinate: four times the 256 ulps the offset moves a point, so a method that fails there
+/// fails on a contact that float coordinates resolve with room to spare.
+pub const RESOLVABLE_ULPS: f64 = 1024.0;
+
+/// The methods compared: epsilons (relative to the scene size) and the two offsets.
 pub const METHODS: &[SpawnMethod] = &[
     SpawnMethod::Epsilon(1e-7),
     SpawnMethod::Epsilon(1e-6),
@@ -44,6 +58,7 @@ pub const METHODS: &[SpawnMethod] = &[
     SpawnMethod::Epsilon(1e-4),
     SpawnMethod::Epsilon(1e-3),
     SpawnMethod::Offset,
+    SpawnMethod::ScaledOffset,
 ];
 
 /// Results of one method at one scale and offset.
@@ -51,6 +66,10 @@ pub const METHODS: &[SpawnMethod] = &[
 pub struct SpawnRow {
     pub scale: f64,
     pub offset: f64,
+    /// Occluder height relative to the scene size.
+    pub gap: f64,
+    /// The gap in ulps of the scene's largest coordinate (`f32`).
+    pub gap_ulps: f64,
     pub method: String,
     pub points: usize,
     pub self_hits: usize,
@@ -65,6 +84,7 @@ pub fn method_name(m: SpawnMethod) -> String {
     match m {
         SpawnMethod::Epsilon(e) => format!("epsilon {e:e}"),
         SpawnMethod::Offset => "offset".to_owned(),
+        SpawnMethod::ScaledOffset => "scaled offset".to_owned(),
     }
 }
 
@@ -103,10 +123,20 @@ impl Setup {
     }
 }
 
-/// Measures every method at `(scale, offset)` on `points` surface points.
+/// `gap` (relative) in ulps of the largest coordinate of the scene at `(scale, offset)`.
+pub fn gap_in_ulps(scale: f64, offset: f64, gap: f64) -> f64 {
+    // Every point is within 2 scene units of the offset on each axis.
+    let largest = (offset.abs() + 2.0 * scale) as f32;
+    let ulp = f32::from_bits(largest.to_bits() + 1) - largest;
+    gap * scale / ulp as f64
+}
+
+/// Measures every method at `(scale, offset)` with the occluder `gap` above the ground, on
+/// `points` surface points.
 pub fn measure(
     scale: f64,
     offset: f64,
+    gap: f64,
     points: usize,
     seed: u64,
 ) -> Result<Vec<SpawnRow>, BuildError> {
@@ -116,7 +146,7 @@ pub fn measure(
         offset,
     };
     let ground = s.quad(1.0, 0.0);
-    let occluder = s.quad(0.5, GAP);
+    let occluder = s.quad(0.5, gap);
     let tris: Vec<Triangle> = ground.iter().chain(&occluder).copied().collect();
     let geom = SceneGeometry {
         triangles: Arc::from(tris.as_slice()),
@@ -137,7 +167,7 @@ pub fn measure(
     while samples.len() < points {
         let (u, v) = (0.02 + 0.96 * rng.next_unit(), 0.02 + 0.96 * rng.next_unit());
         // Where the exact shadow ray crosses the occluder's height.
-        let u_cross = u + light.x * GAP / light.z;
+        let u_cross = u + light.x * gap / light.z;
         if (u_cross - 0.5).abs() < 0.01 {
             continue;
         }
@@ -166,6 +196,10 @@ pub fn measure(
                 SpawnMethod::Offset => {
                     Ray::infinite(Vec3::from(offset_origin(p, normal)), light_dir)
                 }
+                SpawnMethod::ScaledOffset => Ray::infinite(
+                    Vec3::from(offset_origin_scaled(p, normal, scene_size)),
+                    light_dir,
+                ),
             }
             .expect("finite origin and unit direction");
             let hit = index.closest_hit(&ray).map(|h| h.prim);
@@ -179,6 +213,8 @@ pub fn measure(
         rows.push(SpawnRow {
             scale,
             offset,
+            gap,
+            gap_ulps: gap_in_ulps(scale, offset, gap),
             method: method_name(m),
             points: samples.len(),
             self_hits,
@@ -191,27 +227,56 @@ pub fn measure(
     Ok(rows)
 }
 
-/// Every configuration of [`CONFIGS`].
+/// Every configuration of [`CONFIGS`] with every gap of [`GAPS`].
 pub fn run(points: usize) -> Result<Vec<SpawnRow>, BuildError> {
     let mut rows = Vec::new();
     for (i, &(scale, offset)) in CONFIGS.iter().enumerate() {
-        rows.extend(measure(scale, offset, points, 100 + i as u64)?);
+        for (j, &gap) in GAPS.iter().enumerate() {
+            let seed = 100 + (i * GAPS.len() + j) as u64;
+            rows.extend(measure(scale, offset, gap, points, seed)?);
+        }
     }
     Ok(rows)
 }
 
-/// Total failures (self-hits plus missed contacts) per method, in [`METHODS`] order.
-pub fn failures_per_method(rows: &[SpawnRow]) -> Vec<(String, usize)> {
+/// Failures of one method. Self-hits count on every row (they darken every lit surface, gap or
+/// not); missed contacts count where the gap is [resolvable](RESOLVABLE_ULPS).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MethodFailures {
+    pub method: String,
+    pub self_hits: usize,
+    /// Rows with at least one self-hit.
+    pub self_hit_rows: usize,
+    pub missed_resolvable: usize,
+    /// Rows with a resolvable gap and at least one missed contact.
+    pub missed_resolvable_rows: usize,
+    /// Missed contacts on every row, resolvable or not.
+    pub missed_all: usize,
+}
+
+impl MethodFailures {
+    /// What the verdict minimises: self-hits plus missed resolvable contacts.
+    pub fn counted(&self) -> usize {
+        self.self_hits + self.missed_resolvable
+    }
+}
+
+/// [`MethodFailures`] per method, in [`METHODS`] order.
+pub fn failures_per_method(rows: &[SpawnRow]) -> Vec<MethodFailures> {
     METHODS
         .iter()
         .map(|&m| {
             let name = method_name(m);
-            let n = rows
-                .iter()
-                .filter(|r| r.method == name)
-                .map(|r| r.self_hits + r.missed_contacts)
-                .sum();
-            (name, n)
+            let mine: Vec<&SpawnRow> = rows.iter().filter(|r| r.method == name).collect();
+            let resolvable = || mine.iter().filter(|r| r.gap_ulps >= RESOLVABLE_ULPS);
+            MethodFailures {
+                method: name,
+                self_hits: mine.iter().map(|r| r.self_hits).sum(),
+                self_hit_rows: mine.iter().filter(|r| r.self_hits > 0).count(),
+                missed_resolvable: resolvable().map(|r| r.missed_contacts).sum(),
+                missed_resolvable_rows: resolvable().filter(|r| r.missed_contacts > 0).count(),
+                missed_all: mine.iter().map(|r| r.missed_contacts).sum(),
+            }
         })
         .collect()
 }
@@ -222,7 +287,7 @@ mod tests {
 
     #[test]
     fn offset_has_no_self_hits_and_a_huge_epsilon_misses_contacts() {
-        let rows = measure(1.0, 0.0, 400, 1).unwrap();
+        let rows = measure(1.0, 0.0, 1e-4, 400, 1).unwrap();
         let get = |name: &str| rows.iter().find(|r| r.method == name).unwrap();
         assert!(get("offset").contacts > 50);
         assert_eq!(get("offset").self_hits, 0);
@@ -230,5 +295,25 @@ mod tests {
         // An epsilon of 1e-3 of the scene skips the occluder 1e-4 above the ground.
         let big = get("epsilon 1e-3");
         assert_eq!(big.missed_contacts, big.contacts);
+    }
+
+    #[test]
+    fn the_absolute_offset_skips_contacts_in_a_tiny_scene_and_the_scaled_one_does_not() {
+        // 1e-3 units across: the absolute near-origin offset (1/65536) is 1.5% of the scene,
+        // far above a 1e-3 gap (1e-6 units).
+        let rows = measure(1e-3, 0.0, 1e-3, 400, 2).unwrap();
+        let get = |name: &str| rows.iter().find(|r| r.method == name).unwrap();
+        let abs = get("offset");
+        assert!(abs.contacts > 50);
+        assert_eq!(abs.missed_contacts, abs.contacts);
+        let scaled = get("scaled offset");
+        assert_eq!((scaled.self_hits, scaled.missed_contacts), (0, 0));
+    }
+
+    #[test]
+    fn gap_ulps_counts_ulps_of_the_largest_coordinate() {
+        // Near 1e3 an f32 ulp is 2^-14; the largest coordinate is 1e3 + 2 * 10.
+        let ulps = gap_in_ulps(10.0, 1e3, 1e-3);
+        assert!((ulps - 1e-2 * 16384.0).abs() < 1e-9, "{ulps}");
     }
 }
