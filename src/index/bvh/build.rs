@@ -1,11 +1,12 @@
-//! Top-down SAH build into a pointer tree, then flattened depth-first into [`Node`]s.
+//! Top-down SAH build into a pointer tree, then flattened depth-first into [`Node`]s (leaves
+//! live in their parents' child references).
 //!
 //! The builder sees only [`PrimRef`]s (bounds, centroid, id). Large subtrees build in parallel
 //! with `rayon::join` when the current pool has more than one thread; the tree is the same
 //! either way (every decision depends only on the primitives of the subtree).
 
 use super::binned::{self, Scratch};
-use super::node::Node;
+use super::node::{Child, Node};
 use super::params::{BuildConfig, SplitMethod};
 use super::prim_ref::{PrimRef, bounds_and_centroids};
 use super::sweep;
@@ -21,6 +22,10 @@ const PARALLEL_MIN: usize = 4096;
 /// The flattened result.
 #[derive(Debug, Clone)]
 pub struct Built {
+    /// The root's box and reference (a leaf when the whole scene is one).
+    pub root_bounds: Aabb,
+    pub root: Child,
+    /// Inner nodes, depth first: a node's first child (if inner) follows it.
     pub nodes: Vec<Node>,
     /// Primitive ids in leaf order: leaf `i` reads a contiguous run.
     pub prim_ids: Vec<u32>,
@@ -56,12 +61,14 @@ pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
         &mut Scratch::default(),
     );
     let mut out = Built {
-        nodes: Vec::with_capacity(2 * refs.len()),
+        root_bounds: tree.bounds(),
+        root: Child::default(),
+        nodes: Vec::with_capacity(refs.len()),
         prim_ids: refs.iter().map(|r| r.id()).collect(),
         leaves: 0,
         depth: 0,
     };
-    flatten(tree, 1, &mut out);
+    out.root = flatten(tree, 1, &mut out);
     out
 }
 
@@ -141,26 +148,32 @@ fn subtree(
     }
 }
 
-/// Appends `tree` depth-first: an inner node is followed by its first child's subtree, then
-/// its second child's.
-fn flatten(tree: Tree, level: u32, out: &mut Built) {
+impl Tree {
+    fn bounds(&self) -> Aabb {
+        match self {
+            Tree::Leaf { bounds, .. } | Tree::Inner { bounds, .. } => *bounds,
+        }
+    }
+}
+
+/// Appends `tree`'s inner nodes depth-first (a node, then its first child's subtree, then its
+/// second child's) and returns the reference to it; `level` is its level (root = 1).
+fn flatten(tree: Tree, level: u32, out: &mut Built) -> Child {
     out.depth = out.depth.max(level);
     match tree {
-        Tree::Leaf {
-            bounds,
-            first,
-            count,
-        } => {
+        Tree::Leaf { first, count, .. } => {
             out.leaves += 1;
-            out.nodes.push(Node::leaf(bounds, first, count));
+            Child::leaf(first, count)
         }
-        Tree::Inner { bounds, children } => {
+        Tree::Inner { children, .. } => {
             let at = out.nodes.len();
-            out.nodes.push(Node::inner(bounds, 0));
             let [a, b] = *children;
-            flatten(a, level + 1, out);
-            out.nodes[at] = Node::inner(bounds, out.nodes.len() as u32);
-            flatten(b, level + 1, out);
+            let boxes = [a.bounds(), b.bounds()];
+            out.nodes.push(Node::new(boxes, [Child::default(); 2]));
+            let a = flatten(a, level + 1, out);
+            let b = flatten(b, level + 1, out);
+            out.nodes[at].children = [a, b];
+            Child::inner(at as u32)
         }
     }
 }
@@ -181,28 +194,37 @@ mod tests {
             .collect()
     }
 
-    /// Every node's box contains its children's (or its primitives'), every primitive is in
-    /// exactly one leaf, and leaves respect the leaf size.
+    /// Every child's box lies inside its parent's, every leaf's box contains its primitives,
+    /// every primitive is in exactly one leaf, and leaves respect the leaf size.
     fn check(built: &Built, input: &[PrimRef], leaf_size: u32) {
         let mut seen = vec![0u32; input.len()];
-        let mut stack = vec![(0usize, Aabb::new(Vec3A::splat(-1e9), Vec3A::splat(1e9)))];
-        while let Some((i, parent)) = stack.pop() {
-            let n = &built.nodes[i];
-            let b = n.bounds();
-            assert_eq!(parent.union(b), parent, "node {i} sticks out of its parent");
-            if n.is_leaf() {
-                assert!(n.count() <= leaf_size);
-                for &id in &built.prim_ids[n.offset() as usize..][..n.count() as usize] {
+        let mut stack = vec![(built.root, built.root_bounds)];
+        let mut inner = 0;
+        while let Some((child, b)) = stack.pop() {
+            if child.is_leaf() {
+                assert!(child.count <= leaf_size);
+                for &id in &built.prim_ids[child.index as usize..][..child.count as usize] {
                     seen[id as usize] += 1;
                     assert_eq!(b.union(input[id as usize].bounds()), b);
                 }
             } else {
-                stack.push((i + 1, b));
-                stack.push((n.offset() as usize, b));
+                inner += 1;
+                let n = &built.nodes[child.index as usize];
+                for i in 0..2 {
+                    let c = n.child_bounds(i);
+                    assert_eq!(
+                        b.union(c),
+                        b,
+                        "node {} sticks out of its parent",
+                        child.index
+                    );
+                    stack.push((n.children[i], c));
+                }
             }
         }
         assert!(seen.iter().all(|&s| s == 1));
-        assert_eq!(built.nodes.len(), 2 * built.leaves - 1);
+        assert_eq!(inner, built.nodes.len());
+        assert_eq!(built.nodes.len() + 1, built.leaves);
     }
 
     #[test]
@@ -232,10 +254,14 @@ mod tests {
         let key = |b: &Built| -> Vec<_> {
             b.nodes
                 .iter()
-                .map(|n| (n.bounds(), n.offset(), n.count()))
+                .map(|n| (n.child_bounds(0), n.child_bounds(1), n.children))
                 .collect()
         };
         assert_eq!(key(&serial), key(&parallel));
+        assert_eq!(
+            (serial.root, serial.root_bounds),
+            (parallel.root, parallel.root_bounds)
+        );
     }
 
     #[test]

@@ -1,9 +1,10 @@
-//! A bounding volume hierarchy: top-down SAH build (binned or full sweep), 32-byte depth-first
-//! nodes, front-to-back closest-hit traversal with early termination, and any-hit.
+//! A bounding volume hierarchy: top-down SAH build (binned or full sweep), 64-byte depth-first
+//! inner nodes holding both children's boxes, front-to-back closest-hit traversal with early
+//! termination, and any-hit.
 //!
 //! - [`params`]: presets and overrides; `build`: the builder and flattening, with the SAH
-//!   split finders in `binned` and `sweep`; `node`: the node layout; `traverse`: the
-//!   queries.
+//!   split finders in `binned` and `sweep`; `node`: the node layout; `slab`: the two-box slab
+//!   test; `traverse`: the queries.
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids.
 
@@ -12,6 +13,7 @@ mod build;
 mod node;
 pub mod params;
 mod prim_ref;
+mod slab;
 mod sweep;
 mod traverse;
 
@@ -19,15 +21,17 @@ pub use build::MAX_DEPTH;
 pub use params::{BvhParams, Preset, SplitMethod};
 
 use super::{BuildError, Index, IndexInfo, Stats};
-use crate::geometry::{Hit, Ray};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Geometry;
-use node::Node;
+use node::{Child, Node};
 use prim_ref::PrimRef;
 use rayon::prelude::*;
 
 /// The built BVH.
 #[derive(Debug, Clone)]
 pub struct Bvh {
+    root_bounds: Aabb,
+    root: Child,
     nodes: Vec<Node>,
     prim_ids: Vec<u32>,
     leaves: usize,
@@ -66,8 +70,10 @@ impl Index for Bvh {
             )));
         }
         let built = build::build(refs, &cfg);
-        let sah_cost = sah_cost(&built.nodes, cfg.cost_ratio);
+        let sah_cost = sah_cost(&built, cfg.cost_ratio);
         Ok(Bvh {
+            root_bounds: built.root_bounds,
+            root: built.root,
             nodes: built.nodes,
             prim_ids: built.prim_ids,
             leaves: built.leaves,
@@ -83,18 +89,19 @@ impl Index for Bvh {
         ray: &Ray,
         stats: &mut S,
     ) -> Option<Hit> {
-        traverse::closest_hit(&self.nodes, &self.prim_ids, geom, ray, stats)
+        traverse::closest_hit(self.tree(), geom, ray, stats)
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        traverse::any_hit(&self.nodes, &self.prim_ids, geom, ray, stats)
+        traverse::any_hit(self.tree(), geom, ray, stats)
     }
 
     fn info(&self) -> IndexInfo {
-        let memory_bytes = self.nodes.len() * size_of::<Node>() + self.prim_ids.len() * 4;
+        let memory_bytes =
+            size_of::<Aabb>() + self.nodes.len() * size_of::<Node>() + self.prim_ids.len() * 4;
         IndexInfo {
-            nodes: self.nodes.len(),
+            nodes: self.nodes.len() + self.leaves,
             leaves: self.leaves,
             depth: self.depth as usize,
             memory_bytes,
@@ -111,23 +118,37 @@ impl Index for Bvh {
     }
 }
 
+impl Bvh {
+    #[inline(always)]
+    fn tree(&self) -> traverse::Tree<'_> {
+        traverse::Tree {
+            root_bounds: &self.root_bounds,
+            root: self.root,
+            nodes: &self.nodes,
+            prim_ids: &self.prim_ids,
+        }
+    }
+}
+
 /// Surface area heuristic cost of a flattened tree relative to its root's area: inner nodes
 /// cost `cost_ratio`, leaves their primitive count, each weighted by its area.
-fn sah_cost(nodes: &[Node], cost_ratio: f32) -> f64 {
-    let root = nodes[0].bounds().surface_area() as f64;
+fn sah_cost(built: &build::Built, cost_ratio: f32) -> f64 {
+    let root = built.root_bounds.surface_area() as f64;
     if root <= 0.0 {
         return 0.0;
     }
-    let total: f64 = nodes
+    let cost = |c: Child, b: &Aabb| {
+        let per_area = if c.is_leaf() {
+            c.count as f64
+        } else {
+            cost_ratio as f64
+        };
+        per_area * b.surface_area() as f64
+    };
+    let children: f64 = built
+        .nodes
         .iter()
-        .map(|n| {
-            let c = if n.is_leaf() {
-                n.count() as f64
-            } else {
-                cost_ratio as f64
-            };
-            c * n.bounds().surface_area() as f64
-        })
+        .flat_map(|n| (0..2).map(move |i| cost(n.children[i], &n.child_bounds(i))))
         .sum();
-    total / root
+    (cost(built.root, &built.root_bounds) + children) / root
 }

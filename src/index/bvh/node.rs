@@ -1,76 +1,76 @@
-//! The flattened node: 32 bytes, depth-first order (pbrt's `LinearBVHNode`).
+//! The flattened tree: 64-byte inner nodes that hold both children's boxes, depth-first order.
 
 use crate::geometry::Aabb;
-use glam::{BVec4A, Vec3A, Vec4};
+use glam::{Vec3A, Vec4};
 
-/// One node of the flattened tree.
+/// A reference to a subtree: an inner node, or a leaf stored inline in its parent.
 ///
-/// Layout: `lo = (min.x, min.y, min.z, offset)` and `hi = (max.x, max.y, max.z, count)`, the two
-/// `u32` fields stored as the bits of the `w` lanes, so each half loads as one SIMD register and
-/// the box is read without shuffles. `count == 0` marks an inner node: its first child is the
-/// next node in the array and `offset` is the index of its second child. `count > 0` marks a
-/// leaf of `count` primitives whose ids are `prim_ids[offset..offset + count]`.
-#[derive(Debug, Clone, Copy)]
-#[repr(C, align(32))]
-pub struct Node {
-    lo: Vec4,
-    hi: Vec4,
+/// `count == 0`: the inner node `nodes[index]`. `count > 0`: a leaf of `count` primitives whose
+/// ids are `prim_ids[index..index + count]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Child {
+    pub index: u32,
+    pub count: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<Node>() == 32);
-
-/// The `x, y, z` lanes of `v` with `w` zeroed by a bit mask. A `w` lane that holds a small
-/// integer's bits is a denormal float, and arithmetic on it (which `Vec3A` does on all four
-/// lanes) takes a microcode assist costing about a hundred cycles.
-#[inline(always)]
-pub fn xyz(v: Vec4) -> Vec3A {
-    Vec3A::from_vec4(Vec4::select(
-        BVec4A::new(true, true, true, false),
-        v,
-        Vec4::ZERO,
-    ))
-}
-
-impl Node {
+impl Child {
     /// A leaf over `prim_ids[first..first + count]` (`count >= 1`).
-    pub fn leaf(bounds: Aabb, first: u32, count: u32) -> Node {
+    pub fn leaf(first: u32, count: u32) -> Child {
         debug_assert!(count > 0);
-        Node::new(bounds, first, count)
-    }
-
-    /// An inner node whose second child is at index `second` (the first is the next node).
-    pub fn inner(bounds: Aabb, second: u32) -> Node {
-        Node::new(bounds, second, 0)
-    }
-
-    fn new(b: Aabb, offset: u32, count: u32) -> Node {
-        Node {
-            lo: b.min.extend(f32::from_bits(offset)),
-            hi: b.max.extend(f32::from_bits(count)),
+        Child {
+            index: first,
+            count,
         }
     }
 
-    /// The node's box.
-    #[inline(always)]
-    pub fn bounds(&self) -> Aabb {
-        Aabb::new(xyz(self.lo), xyz(self.hi))
-    }
-
-    /// First primitive slot (leaf) or second child (inner node).
-    #[inline(always)]
-    pub fn offset(&self) -> u32 {
-        self.lo.w.to_bits()
-    }
-
-    /// Primitives in the leaf; 0 for an inner node.
-    #[inline(always)]
-    pub fn count(&self) -> u32 {
-        self.hi.w.to_bits()
+    /// The inner node `nodes[index]`.
+    pub fn inner(index: u32) -> Child {
+        Child { index, count: 0 }
     }
 
     #[inline(always)]
-    pub fn is_leaf(&self) -> bool {
-        self.count() != 0
+    pub fn is_leaf(self) -> bool {
+        self.count != 0
+    }
+}
+
+/// One inner node: the boxes of its two children `a` (lane 0) and `b` (lane 1) in
+/// structure-of-arrays form, so one SIMD pass tests both (see [`super::slab`]), and the
+/// children's references. Exactly one cache line.
+///
+/// Per axis, `x = [a.min.x, b.min.x, a.max.x, b.max.x]` (likewise `y`, `z`): the two halves of
+/// each register are the slab planes, so swapping halves pairs every plane with its opposite.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
+pub struct Node {
+    pub x: Vec4,
+    pub y: Vec4,
+    pub z: Vec4,
+    pub children: [Child; 2],
+}
+
+const _: () = assert!(std::mem::size_of::<Node>() == 64);
+
+impl Node {
+    /// A node over children `a` and `b` with boxes `boxes[0]` and `boxes[1]`.
+    pub fn new(boxes: [Aabb; 2], children: [Child; 2]) -> Node {
+        let [a, b] = boxes;
+        let lane = |axis: usize| Vec4::new(a.min[axis], b.min[axis], a.max[axis], b.max[axis]);
+        Node {
+            x: lane(0),
+            y: lane(1),
+            z: lane(2),
+            children,
+        }
+    }
+
+    /// The box of child `i` (0 or 1).
+    pub fn child_bounds(&self, i: usize) -> Aabb {
+        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
+        Aabb::new(
+            Vec3A::new(x[i], y[i], z[i]),
+            Vec3A::new(x[i + 2], y[i + 2], z[i + 2]),
+        )
     }
 }
 
@@ -79,15 +79,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn fields_round_trip_including_nan_bit_patterns() {
-        let b = Aabb::new(Vec3A::new(-1.0, 2.0, 3.0), Vec3A::new(4.0, 5.0, 6.5));
-        // 0x7fc0_0001 and 0xffff_ffff are NaN bit patterns as f32: they must survive unchanged.
-        for (offset, count) in [(0x7fc0_0001, 3), (u32::MAX, 0xffff_ffff), (17, 0)] {
-            let n = Node::new(b, offset, count);
-            assert_eq!((n.offset(), n.count()), (offset, count));
-            assert_eq!(n.bounds(), b);
-        }
-        assert!(!Node::inner(b, 5).is_leaf());
-        assert!(Node::leaf(b, 0, 1).is_leaf());
+    fn child_boxes_and_references_round_trip() {
+        let a = Aabb::new(Vec3A::new(-1.0, 2.0, 3.0), Vec3A::new(4.0, 5.0, 6.5));
+        let b = Aabb::new(Vec3A::new(-7.0, -2.0, 0.0), Vec3A::new(-6.0, 9.0, 0.25));
+        let kids = [Child::leaf(17, 3), Child::inner(u32::MAX)];
+        let n = Node::new([a, b], kids);
+        assert_eq!((n.child_bounds(0), n.child_bounds(1)), (a, b));
+        assert_eq!(n.children, kids);
+        assert!(kids[0].is_leaf() && !kids[1].is_leaf());
     }
 }

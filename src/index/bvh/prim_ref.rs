@@ -2,9 +2,20 @@
 //! serves triangles, spheres and mixed scenes. The centroid is the centre of the bounds (what
 //! [`crate::scene::Geometry::centroid`] returns).
 
-use super::node::xyz;
 use crate::geometry::Aabb;
-use glam::{Vec3A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
+
+/// The `x, y, z` lanes of `v` with `w` zeroed by a bit mask. A `w` lane that holds a small
+/// integer's bits is a denormal float, and arithmetic on it (which `Vec3A` does on all four
+/// lanes) takes a microcode assist costing about a hundred cycles.
+#[inline(always)]
+fn xyz(v: Vec4) -> Vec3A {
+    Vec3A::from_vec4(Vec4::select(
+        BVec4A::new(true, true, true, false),
+        v,
+        Vec4::ZERO,
+    ))
+}
 
 /// A primitive as the builder sees it, in 32 bytes (the builder streams these through memory
 /// once per tree level): `lo = (min, id bits)`, `hi = (max, unused)`.

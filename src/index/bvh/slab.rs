@@ -1,0 +1,192 @@
+//! The slab test of both children of a [`Node`] in one SIMD pass.
+//!
+//! Lane `i` of every register below is one slab plane: lanes 0 and 1 the `min` planes of
+//! children `a` and `b`, lanes 2 and 3 their `max` planes (the node's layout). Per child the
+//! pass computes exactly what [`Aabb::ray_interval`](crate::geometry::Aabb::ray_interval)
+//! computes: the same products `(plane - origin) * inv_dir` with the same roundings, the same
+//! NaN rule, min/max per axis, the far distance widened by [`SLAB_FAR_SCALE`] (as
+//! `max(far * s, far * (2 - s))`, which is `far * s` for `far >= 0` and `far * (2 - s)` below,
+//! the scalar function's choice), then clipped to `[t_min, t_max]`. The entries and exits are
+//! therefore those of the scalar test (up to the sign of a zero, which no comparison sees), so
+//! the pass is conservative (never rejects a box the exact ray meets) and monotone (a box
+//! inside another gets a later or equal entry) for the same reasons, and culling with it stays
+//! exact (see [`crate::geometry::Hit`]). `tests` checks the equality on random and degenerate
+//! rays.
+//!
+//! Two variants, chosen once per ray by [`SlabRay::finite`]:
+//! - `SAFE = false` when every component of `inv_dir` is finite. A product `(p - o) * inv` can
+//!   then not be NaN: `p - o` is finite or, on overflow, infinite, and `inv` is finite and
+//!   nonzero (`1/x` of a finite `x` is never 0), so NaN (`0 * inf` or `inf * 0`) cannot arise
+//!   from finite boxes and the NaN selects of the scalar test are identities, skipped here.
+//! - `SAFE = true` otherwise (a zero or denormal direction component): a NaN product (origin in
+//!   the plane of a slab the ray runs parallel to) is replaced by `-inf` for the entry and `+inf`
+//!   for the exit, so that axis puts no constraint on `t`, exactly as in the scalar test.
+
+use super::node::Node;
+use crate::geometry::{Ray, SLAB_FAR_SCALE};
+use glam::{Vec4, Vec4Swizzles};
+
+/// A ray's slab constants, splatted once per ray.
+#[derive(Debug, Clone, Copy)]
+pub struct SlabRay {
+    origin: [Vec4; 3],
+    inv_dir: [Vec4; 3],
+    t_min: Vec4,
+}
+
+impl SlabRay {
+    #[inline(always)]
+    pub fn new(ray: &Ray) -> SlabRay {
+        let (o, i) = (ray.origin, ray.inv_dir);
+        SlabRay {
+            origin: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
+            inv_dir: [Vec4::splat(i.x), Vec4::splat(i.y), Vec4::splat(i.z)],
+            t_min: Vec4::splat(ray.t_min),
+        }
+    }
+
+    /// Whether the ray may take the `SAFE = false` variant (every `inv_dir` component finite).
+    #[inline(always)]
+    pub fn finite(ray: &Ray) -> bool {
+        ray.inv_dir.is_finite()
+    }
+}
+
+/// Entry (lanes 0, 1: `t_near`) and exit (`t_far`) distances of one axis's two slabs per child,
+/// duplicated in lanes 2, 3.
+#[inline(always)]
+fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, Vec4) {
+    let t = (planes - origin) * inv_dir;
+    let (near, far) = if SAFE {
+        // NaN (origin on the slab plane, direction 0 on that axis) means "no constraint".
+        let ok = t.cmpeq(t);
+        (
+            Vec4::select(ok, t, Vec4::NEG_INFINITY),
+            Vec4::select(ok, t, Vec4::INFINITY),
+        )
+    } else {
+        (t, t)
+    };
+    (near.min(near.zwxy()), far.max(far.zwxy()))
+}
+
+/// Tests both children's boxes against `[ray.t_min, t_max]`: bit 0 of the mask is set when child
+/// `a` is hit, bit 1 when `b` is; lanes 0 and 1 of the vector are their entry distances
+/// (meaningful for hit children only).
+#[inline(always)]
+pub fn hit_children<const SAFE: bool>(node: &Node, ray: &SlabRay, t_max: f32) -> (u32, Vec4) {
+    let (nx, fx) = axis::<SAFE>(node.x, ray.origin[0], ray.inv_dir[0]);
+    let (ny, fy) = axis::<SAFE>(node.y, ray.origin[1], ray.inv_dir[1]);
+    let (nz, fz) = axis::<SAFE>(node.z, ray.origin[2], ray.inv_dir[2]);
+    let enter = nx.max(ny).max(nz.max(ray.t_min));
+    let far = fx.min(fy).min(fz);
+    let exit = (far * SLAB_FAR_SCALE)
+        .max(far * (2.0 - SLAB_FAR_SCALE))
+        .min(Vec4::splat(t_max));
+    (enter.cmple(exit).bitmask() & 0b11, enter)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Aabb;
+    use crate::index::bvh::node::Child;
+    use glam::{Vec3, Vec3A};
+
+    /// A small deterministic generator (xorshift), so the test needs no seed plumbing.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        /// One of a few grid values (so origins land on box planes) or a random float.
+        fn coord(&mut self) -> f32 {
+            let r = self.next();
+            match r % 4 {
+                0 => [-1.0, 0.0, 0.5, 1.0, 2.0][(r >> 8) as usize % 5],
+                _ => ((r >> 16) as u32 as f32 / u32::MAX as f32) * 4.0 - 2.0,
+            }
+        }
+        /// A direction component: often +0, -0 or a denormal, else random.
+        fn dir(&mut self) -> f32 {
+            let r = self.next();
+            match r % 8 {
+                0 => 0.0,
+                1 => -0.0,
+                2 => 1e-45,
+                _ => self.coord(),
+            }
+        }
+        fn aabb(&mut self) -> Aabb {
+            let p = Vec3A::new(self.coord(), self.coord(), self.coord());
+            let q = Vec3A::new(self.coord(), self.coord(), self.coord());
+            Aabb::new(p.min(q), p.max(q))
+        }
+    }
+
+    /// What the scalar test says about a box: `Some(entry)` when hit.
+    fn scalar(b: &Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
+        b.ray_entry(ray, ray.t_min, t_max)
+    }
+
+    fn both<const SAFE: bool>(node: &Node, ray: &Ray, t_max: f32) -> [Option<f32>; 2] {
+        let (mask, enter) = hit_children::<SAFE>(node, &SlabRay::new(ray), t_max);
+        [0, 1].map(|i| (mask >> i & 1 == 1).then_some(enter[i]))
+    }
+
+    #[test]
+    fn equals_the_scalar_slab_test_on_random_and_degenerate_rays() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let (mut hits, mut safe_rays) = (0, 0);
+        for _ in 0..200_000 {
+            let boxes = [rng.aabb(), rng.aabb()];
+            let node = Node::new(boxes, [Child::leaf(0, 1), Child::leaf(1, 1)]);
+            let o = Vec3::new(rng.coord(), rng.coord(), rng.coord());
+            let d = Vec3::new(rng.dir(), rng.dir(), rng.dir());
+            let Ok(ray) = Ray::new(o, d, rng.coord().min(0.0), f32::INFINITY) else {
+                continue;
+            };
+            let t_max = if rng.next().is_multiple_of(2) {
+                f32::INFINITY
+            } else {
+                rng.coord().abs() * 3.0
+            };
+            let want = boxes.map(|b| scalar(&b, &ray, t_max));
+            // The safe variant must agree on every ray, the fast one on the rays it is chosen for.
+            assert_eq!(both::<true>(&node, &ray, t_max), want, "{ray:?} {boxes:?}");
+            if SlabRay::finite(&ray) {
+                assert_eq!(both::<false>(&node, &ray, t_max), want, "{ray:?} {boxes:?}");
+            } else {
+                safe_rays += 1;
+            }
+            hits += want.iter().flatten().count();
+        }
+        // The generator must exercise both variants and both outcomes.
+        assert!(safe_rays > 10_000 && hits > 10_000, "{safe_rays} {hits}");
+    }
+
+    #[test]
+    fn rays_in_a_face_plane_with_zero_components_hit_through_the_safe_variant() {
+        let unit = Aabb::new(Vec3A::ZERO, Vec3A::ONE);
+        let next = Aabb::new(Vec3A::new(1.0, 0.0, 0.0), Vec3A::new(2.0, 1.0, 1.0));
+        let node = Node::new([unit, next], [Child::leaf(0, 1), Child::leaf(1, 1)]);
+        for z in [0.0f32, 1.0] {
+            for dz in [0.0f32, -0.0] {
+                // Along the face z = const shared by both boxes, and along their shared face x = 1.
+                for (o, d) in [
+                    ([-1.0, 0.5, z], [1.0, 0.0, dz]),
+                    ([1.0, -1.0, z], [dz, 1.0, 0.0]),
+                ] {
+                    let ray = Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap();
+                    assert!(!SlabRay::finite(&ray));
+                    let got = both::<true>(&node, &ray, f32::INFINITY);
+                    assert!(got.iter().all(Option::is_some), "{o:?} {d:?}: {got:?}");
+                    assert_eq!(got, [unit, next].map(|b| scalar(&b, &ray, f32::INFINITY)));
+                }
+            }
+        }
+    }
+}
