@@ -7,7 +7,8 @@ use std::process::Command;
 #[test]
 fn small_study_measures_every_kernel_against_the_exact_reference() {
     let config = AccuracyConfig::quick(300);
-    let rows = accuracy::run(&config);
+    let all = accuracy::run(&config).unwrap();
+    let (shapes, rows): (Vec<_>, Vec<_>) = all.iter().cloned().partition(|r| r.kernel.is_shape());
     // 4 triangle kernels x 2 precisions x 4 families + 2 sphere kernels x 2 x 2, per offset.
     assert_eq!(rows.len(), (32 + 8) * config.offsets.len());
     for r in &rows {
@@ -46,10 +47,41 @@ fn small_study_measures_every_kernel_against_the_exact_reference() {
         assert_eq!(r.false_misses, 0, "{r:?}");
     }
 
+    // Shape kernels, f32 only: 5 families for the box (two kernels), cylinder and cone, 3 for
+    // the polygons (no inside) and the ellipsoid (no edges), per offset.
+    assert_eq!(shapes.len(), (5 * 4 + 3 * 3) * config.offsets.len());
+    for r in &shapes {
+        assert_eq!(r.precision, Precision::F32, "{r:?}");
+        assert!(r.ns_per_test > 0.0, "{r:?}");
+        assert!(r.reference_hits > 0, "{r:?}");
+        // The reference leaves out the rays it cannot decide: at most those aimed exactly at a
+        // vertex or the apex (a third of the polygons' and a quarter of the cone's edge targets;
+        // their direction is exact in f32 at some offsets), never most of a family.
+        assert!(r.unverifiable * 2 < r.rays, "{r:?}");
+        if matches!(r.family, Family::Random | Family::Inside) {
+            assert_eq!(r.unverifiable, 0, "{r:?}");
+        }
+        if r.family == Family::Random {
+            assert!(r.max_rel_t_error < 1e-3, "{r:?}");
+        }
+        // From inside a solid every ray hits; the f32 kernels lose none at these offsets.
+        if r.family == Family::Inside {
+            assert_eq!(r.reference_hits + r.unverifiable, r.rays, "{r:?}");
+        }
+    }
+    let shape_err: f64 = shapes.iter().map(|r| r.max_rel_t_error).fold(0.0, f64::max);
+    assert!(
+        shape_err > 1e-9,
+        "f32 shape kernels show rounding error: {shape_err}"
+    );
+
     let dir = tempfile::tempdir().unwrap();
-    accuracy::write_all(dir.path(), &rows, &[]).unwrap();
+    accuracy::write_all(dir.path(), &all, &[]).unwrap();
     let svg = std::fs::read_to_string(dir.path().join("time_vs_error.svg")).unwrap();
     assert!(svg.contains("Pareto front"));
+    assert!(svg.contains("shape kernels") && svg.contains("box-front-planes"));
+    let md = std::fs::read_to_string(dir.path().join("accuracy.md")).unwrap();
+    assert!(md.contains("| cone | inside |"), "{md}");
 }
 
 #[test]
@@ -85,6 +117,23 @@ fn accuracy_command_writes_csv_and_plots() {
     assert!(svg.contains("Pareto front") && svg.contains("watertight f32"));
     let csv = std::fs::read_to_string(dir.path().join("accuracy.csv")).unwrap();
     assert!(csv.starts_with("kernel,precision,family,offset"), "{csv}");
+    // The shape kernels' rows, with the families that apply to each.
+    for row in [
+        "box-slabs,f32,edges-outside,",
+        "box-front-planes,f32,inside,",
+        "convex-polygon,f32,grazing,",
+        "concave-polygon,f32,edges-outside,",
+        "cylinder,f32,edges-inside,",
+        "cone,f32,edges-outside,",
+        "ellipsoid,f32,inside,",
+    ] {
+        assert!(csv.contains(row), "no {row} row in accuracy.csv");
+    }
+    assert!(!csv.contains("ellipsoid,f32,edges-outside,"));
+    assert!(
+        !csv.contains("cone,f64,"),
+        "shapes are measured in f32 only"
+    );
     let bad = Command::new(env!("CARGO_BIN_EXE_accelbench"))
         .args(["accuracy", "--rays", "0"])
         .output()

@@ -316,3 +316,32 @@ fn cli_writes_pngs_and_rejects_bad_parameters() {
     let r = cli(&["render", "--scene", "nope", "--out", o]);
     assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("unknown scene"));
 }
+
+/// A `[[shape]]`'s `material` reaches the shaded image: the same box in front of the camera,
+/// once red by its material and once with none (the grey default).
+#[test]
+fn shape_materials_reach_the_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let centre_pixel = |material: &str| {
+        let toml = format!(
+            "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n\n[[light]]\nposition = [0, 0, 5]\n\n\
+             [[shape]]\nkind = \"box\"\ncenter = [0, 0, 0]\nhalf_extents = [1, 1, 1]\n{material}\n"
+        );
+        let path = dir.path().join("box.toml");
+        std::fs::write(&path, toml).unwrap();
+        let scene = load_scene(path.to_str().unwrap()).unwrap();
+        let opts = RenderOptions {
+            width: 16,
+            height: 16,
+        };
+        let img = render_shaded(&scene, build("bvh", &scene).as_ref(), &opts).unwrap();
+        img.pixel(8, 8)
+    };
+    let red = centre_pixel("material = { color = [1, 0, 0], specular = 0 }");
+    let grey = centre_pixel("");
+    assert!(red[0] > 100 && red[1] == 0 && red[2] == 0, "{red:?}");
+    assert!(
+        grey[0] > 100 && grey[0] == grey[1] && grey[1] == grey[2],
+        "{grey:?}"
+    );
+}

@@ -13,7 +13,8 @@ use crate::scene::generators::icosphere_mesh;
 use glam::{DVec3, Vec3, Vec3A};
 use serde::Serialize;
 
-/// A family of rays.
+/// A family of rays. For the shapes (see `shape_families`) the edge families aim at box edges
+/// and corners, polygon edges and vertices, the rims of cylinders and cones and the cone's apex.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Family {
@@ -29,12 +30,25 @@ pub enum Family {
     EdgesInside,
     /// Nearly parallel to the surface: at angles log-uniform in `[1e-6, 1e-1]` rad to a
     /// triangle's plane, or passing a sphere's centre at `r (1 - delta)`, `delta` log-uniform in
-    /// `[1e-7, 1e-1]`.
+    /// `[1e-7, 1e-1]`; for the shapes, at such angles to the surface's tangent plane at a
+    /// random surface point.
     Grazing,
+    /// From inside a solid shape (a ball around its middle) in uniform random directions: every
+    /// ray must hit (the exit). Shapes only.
+    Inside,
 }
 
 impl Family {
-    pub const ALL: [Family; 4] = [
+    pub const ALL: [Family; 5] = [
+        Family::Random,
+        Family::EdgesOutside,
+        Family::EdgesInside,
+        Family::Grazing,
+        Family::Inside,
+    ];
+
+    /// The families of the triangle mesh and the spheres.
+    pub const MESH: [Family; 4] = [
         Family::Random,
         Family::EdgesOutside,
         Family::EdgesInside,
@@ -52,6 +66,7 @@ impl Family {
             Family::EdgesOutside => "edges-outside",
             Family::EdgesInside => "edges-inside",
             Family::Grazing => "grazing",
+            Family::Inside => "inside",
         }
     }
 }
@@ -61,11 +76,11 @@ pub fn object_size(offset: f64) -> f64 {
     (offset * 1e-4).max(1.0)
 }
 
-fn to_f32(p: DVec3) -> Vec3A {
+pub(super) fn to_f32(p: DVec3) -> Vec3A {
     Vec3A::from(p.as_vec3())
 }
 
-fn f64v(p: Vec3A) -> DVec3 {
+pub(super) fn f64v(p: Vec3A) -> DVec3 {
     Vec3::from(p).as_dvec3()
 }
 
@@ -101,28 +116,28 @@ pub fn spheres_at(offset: f64) -> Vec<Sphere> {
     s
 }
 
-fn unit(rng: &mut SplitMix64) -> DVec3 {
+pub(super) fn unit(rng: &mut SplitMix64) -> DVec3 {
     let w = 1.0 - 2.0 * rng.next_unit();
     let phi = std::f64::consts::TAU * rng.next_unit();
     let s = (1.0 - w * w).max(0.0).sqrt();
     DVec3::new(s * phi.cos(), s * phi.sin(), w)
 }
 
-fn in_cube(rng: &mut SplitMix64) -> DVec3 {
+pub(super) fn in_cube(rng: &mut SplitMix64) -> DVec3 {
     DVec3::new(rng.next_unit(), rng.next_unit(), rng.next_unit()) * 2.0 - 1.0
 }
 
-fn log_uniform(rng: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+pub(super) fn log_uniform(rng: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
     (lo.ln() + rng.next_unit() * (hi.ln() - lo.ln())).exp()
 }
 
 /// A ray from `o` towards `target` (both already `f32`), direction rounded from `f64`.
-fn aimed(o: Vec3A, target: Vec3A) -> Option<Ray> {
+pub(super) fn aimed(o: Vec3A, target: Vec3A) -> Option<Ray> {
     let d = f64v(target) - f64v(o);
     Ray::infinite(Vec3::from(o), d.as_vec3()).ok()
 }
 
-/// Rays of `family` for the triangle mesh `tris` (placed at `offset`).
+/// Rays of `family` for the triangle mesh `tris` (placed at `offset`); `Inside` gives none.
 pub fn triangle_rays(
     family: Family,
     tris: &[Triangle],
@@ -133,6 +148,9 @@ pub fn triangle_rays(
     let mut rng = SplitMix64::new(seed);
     let outside = |rng: &mut SplitMix64| place(unit(rng) * 3.0, offset);
     let mut rays = Vec::with_capacity(n);
+    if family == Family::Inside {
+        return rays;
+    }
     let mut i = 0usize;
     while rays.len() < n && i < 4 * n + 16 {
         i += 1;
@@ -157,7 +175,7 @@ pub fn triangle_rays(
                 };
                 aimed(o, target)
             }
-            Family::Grazing => {
+            Family::Grazing | Family::Inside => {
                 let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
                 let v = t.v.map(f64v);
                 let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
@@ -181,7 +199,8 @@ pub fn triangle_rays(
     rays
 }
 
-/// Rays of `family` for the spheres (placed at `offset`); the edge families give none.
+/// Rays of `family` for the spheres (placed at `offset`); the edge families and `Inside` give
+/// none.
 pub fn sphere_rays(
     family: Family,
     spheres: &[Sphere],
@@ -191,7 +210,7 @@ pub fn sphere_rays(
 ) -> Vec<Ray> {
     let mut rng = SplitMix64::new(seed);
     let mut rays = Vec::with_capacity(n);
-    if family.is_edges() {
+    if family.is_edges() || family == Family::Inside {
         return rays;
     }
     for _ in 0..4 * n + 16 {
@@ -228,7 +247,7 @@ mod tests {
         for offset in [0.0, 1e3, 1e7] {
             let tris = icosphere_at(1, offset);
             let spheres = spheres_at(offset);
-            for f in Family::ALL {
+            for f in Family::MESH {
                 assert_eq!(triangle_rays(f, &tris, offset, 50, 1).len(), 50, "{f:?}");
                 let expected = if f.is_edges() { 0 } else { 50 };
                 assert_eq!(sphere_rays(f, &spheres, offset, 50, 1).len(), expected);

@@ -1,11 +1,14 @@
-//! The kernels under study, as data: six kernels in two precisions, the primitives they are shot
+//! The kernels under study, as data: six triangle and sphere kernels in two precisions and seven
+//! shape kernels in `f32` (their `f64` mirrors are the reference), the primitives they are shot
 //! at, the closest hit of one kernel over a scene, and the single-thread timing loop.
 
 use super::kernels_f64::{self as k64, Ray64};
 use super::reference::{self, Reference};
+use super::shapes_f64;
+use crate::geometry::shapes::{cone, cylinder, ellipsoid, obb, polygon};
 use crate::geometry::sphere::{intersect_algebraic, intersect_geometric};
 use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
-use crate::geometry::{Ray, Sphere, Triangle, TriangleKernel};
+use crate::geometry::{Ray, Shape, Sphere, Triangle, TriangleKernel};
 use serde::Serialize;
 use std::hint::black_box;
 use std::time::Instant;
@@ -20,16 +23,43 @@ pub enum Kernel {
     Watertight,
     SphereAlgebraic,
     SphereGeometric,
+    /// Oriented box, slab method (`shapes::obb::intersect_slabs`).
+    BoxSlabs,
+    /// Oriented box, the three front-facing planes (`shapes::obb::intersect_front_planes`).
+    BoxFrontPlanes,
+    ConvexPolygon,
+    ConcavePolygon,
+    Cylinder,
+    Cone,
+    Ellipsoid,
 }
 
 impl Kernel {
-    pub const ALL: [Kernel; 6] = [
+    pub const ALL: [Kernel; 13] = [
         Kernel::PlaneEdges,
         Kernel::Parametric,
         Kernel::MollerTrumbore,
         Kernel::Watertight,
         Kernel::SphereAlgebraic,
         Kernel::SphereGeometric,
+        Kernel::BoxSlabs,
+        Kernel::BoxFrontPlanes,
+        Kernel::ConvexPolygon,
+        Kernel::ConcavePolygon,
+        Kernel::Cylinder,
+        Kernel::Cone,
+        Kernel::Ellipsoid,
+    ];
+
+    /// The shape kernels (measured in `f32` against their `f64` mirrors).
+    pub const SHAPES: [Kernel; 7] = [
+        Kernel::BoxSlabs,
+        Kernel::BoxFrontPlanes,
+        Kernel::ConvexPolygon,
+        Kernel::ConcavePolygon,
+        Kernel::Cylinder,
+        Kernel::Cone,
+        Kernel::Ellipsoid,
     ];
 
     pub fn name(self) -> &'static str {
@@ -40,11 +70,26 @@ impl Kernel {
             Kernel::Watertight => "watertight",
             Kernel::SphereAlgebraic => "sphere-algebraic",
             Kernel::SphereGeometric => "sphere-geometric",
+            Kernel::BoxSlabs => "box-slabs",
+            Kernel::BoxFrontPlanes => "box-front-planes",
+            Kernel::ConvexPolygon => "convex-polygon",
+            Kernel::ConcavePolygon => "concave-polygon",
+            Kernel::Cylinder => "cylinder",
+            Kernel::Cone => "cone",
+            Kernel::Ellipsoid => "ellipsoid",
         }
     }
 
     pub fn is_sphere(self) -> bool {
         matches!(self, Kernel::SphereAlgebraic | Kernel::SphereGeometric)
+    }
+
+    pub fn is_shape(self) -> bool {
+        Kernel::SHAPES.contains(&self)
+    }
+
+    pub fn is_triangle(self) -> bool {
+        !self.is_sphere() && !self.is_shape()
     }
 }
 
@@ -69,6 +114,12 @@ impl Precision {
 pub enum Prims {
     Tris(Vec<Triangle>),
     Spheres(Vec<Sphere>),
+    /// Shapes of the kind of `kernel`, which is both what is measured and what its `f64` mirror
+    /// (the reference) follows.
+    Shapes {
+        shapes: Vec<Shape>,
+        kernel: Kernel,
+    },
 }
 
 impl Prims {
@@ -76,6 +127,7 @@ impl Prims {
         match self {
             Prims::Tris(t) => t.len(),
             Prims::Spheres(s) => s.len(),
+            Prims::Shapes { shapes, .. } => shapes.len(),
         }
     }
 
@@ -87,6 +139,7 @@ impl Prims {
         match self {
             Prims::Tris(t) => reference::triangle(&t[prim], ray),
             Prims::Spheres(s) => reference::sphere(&s[prim], ray),
+            Prims::Shapes { shapes, kernel } => shapes_f64::reference(*kernel, &shapes[prim], ray),
         }
     }
 
@@ -95,6 +148,7 @@ impl Prims {
         let b = match self {
             Prims::Tris(t) => t[prim].bounds(),
             Prims::Spheres(s) => s[prim].bounds(),
+            Prims::Shapes { shapes, .. } => shapes[prim].bounds(),
         };
         let (lo, hi) = (
             glam::Vec3::from(b.min).as_dvec3(),
@@ -123,6 +177,13 @@ pub fn kernel_closest(
                 sphere_f32(kernel)(&s[i], ray, f32::INFINITY).map(f64::from)
             }
             (Prims::Spheres(s), Precision::F64) => sphere_f64(kernel)(&s[i], r64, f64::INFINITY),
+            (Prims::Shapes { shapes, .. }, Precision::F32) => {
+                shape_f32(kernel, &shapes[i], ray, f32::INFINITY).map(f64::from)
+            }
+            (Prims::Shapes { shapes, .. }, Precision::F64) => {
+                let mut doubt = shapes_f64::Doubt::default();
+                shapes_f64::mirror(kernel, &shapes[i], r64, f64::INFINITY, &mut doubt)
+            }
         };
         if let Some(t) = t
             && best.is_none_or(|(_, bt)| t < bt)
@@ -170,14 +231,34 @@ fn sphere_f64(k: Kernel) -> SphF64 {
     }
 }
 
-/// The kernel variants that apply to a primitive kind.
+/// The shape kernel `kernel` in `f32` (the box takes either of its two kernels; every other
+/// shape its one shared kernel).
+#[inline(always)]
+pub fn shape_f32(kernel: Kernel, shape: &Shape, ray: &Ray, t_max: f32) -> Option<f32> {
+    match (kernel, shape) {
+        (Kernel::BoxFrontPlanes, Shape::Box(b)) => obb::intersect_front_planes(b, ray, t_max),
+        _ => shape.intersect(ray, t_max),
+    }
+}
+
+/// The triangle or sphere kernel variants, in both precisions.
 pub fn variants(spheres: bool) -> Vec<(Kernel, Precision)> {
     Kernel::ALL
         .into_iter()
-        .filter(|k| k.is_sphere() == spheres)
+        .filter(|k| {
+            if spheres {
+                k.is_sphere()
+            } else {
+                k.is_triangle()
+            }
+        })
         .flat_map(|k| [(k, Precision::F32), (k, Precision::F64)])
         .collect()
 }
+
+/// Each timed repeat runs the rays over the primitives as many times as it takes to make at
+/// least this many tests (a single shape and a thousand rays would be too short to time).
+pub const MIN_TIMED_TESTS: usize = 200_000;
 
 /// Best-of-`repeats` nanoseconds per test of one variant over `rays x prims`, single thread.
 pub fn time_variant(
@@ -191,36 +272,85 @@ pub fn time_variant(
         return f64::NAN;
     }
     let r64: Vec<Ray64> = rays.iter().map(Ray64::from_ray).collect();
+    let tests = rays.len() * prims.len();
+    let passes = MIN_TIMED_TESTS.div_ceil(tests);
     let mut best = f64::INFINITY;
     for _ in 0..repeats {
         let start = Instant::now();
-        let hits = match (prims, precision) {
-            (Prims::Tris(t), Precision::F32) => count_hits(t, rays, |p, r| match kernel {
-                Kernel::PlaneEdges => PlaneEdges::intersect(p, r, f32::INFINITY).is_some(),
-                Kernel::Parametric => Parametric::intersect(p, r, f32::INFINITY).is_some(),
-                Kernel::MollerTrumbore => MollerTrumbore::intersect(p, r, f32::INFINITY).is_some(),
-                _ => Watertight::intersect(p, r, f32::INFINITY).is_some(),
-            }),
-            (Prims::Tris(t), Precision::F64) => count_hits(t, &r64, |p, r| match kernel {
-                Kernel::PlaneEdges => k64::plane_edges(p, r, f64::INFINITY).is_some(),
-                Kernel::Parametric => k64::parametric(p, r, f64::INFINITY).is_some(),
-                Kernel::MollerTrumbore => k64::moller_trumbore(p, r, f64::INFINITY).is_some(),
-                _ => k64::watertight(p, r, f64::INFINITY).is_some(),
-            }),
-            (Prims::Spheres(s), Precision::F32) => count_hits(s, rays, |p, r| match kernel {
-                Kernel::SphereGeometric => intersect_geometric(p, r, f32::INFINITY).is_some(),
-                _ => intersect_algebraic(p, r, f32::INFINITY).is_some(),
-            }),
-            (Prims::Spheres(s), Precision::F64) => count_hits(s, &r64, |p, r| match kernel {
-                Kernel::SphereGeometric => k64::sphere_geometric(p, r, f64::INFINITY).is_some(),
-                _ => k64::sphere_algebraic(p, r, f64::INFINITY).is_some(),
-            }),
-        };
+        let hits: usize = (0..passes)
+            .map(|_| one_pass(kernel, precision, prims, rays, &r64))
+            .sum();
         black_box(hits);
-        let ns = start.elapsed().as_nanos() as f64 / (rays.len() * prims.len()) as f64;
+        let ns = start.elapsed().as_nanos() as f64 / (passes * tests) as f64;
         best = best.min(ns);
     }
     best
+}
+
+/// Every ray against every primitive once; the number of hits.
+fn one_pass(
+    kernel: Kernel,
+    precision: Precision,
+    prims: &Prims,
+    rays: &[Ray],
+    r64: &[Ray64],
+) -> usize {
+    match (prims, precision) {
+        (Prims::Tris(t), Precision::F32) => count_hits(t, rays, |p, r| match kernel {
+            Kernel::PlaneEdges => PlaneEdges::intersect(p, r, f32::INFINITY).is_some(),
+            Kernel::Parametric => Parametric::intersect(p, r, f32::INFINITY).is_some(),
+            Kernel::MollerTrumbore => MollerTrumbore::intersect(p, r, f32::INFINITY).is_some(),
+            _ => Watertight::intersect(p, r, f32::INFINITY).is_some(),
+        }),
+        (Prims::Tris(t), Precision::F64) => count_hits(t, r64, |p, r| match kernel {
+            Kernel::PlaneEdges => k64::plane_edges(p, r, f64::INFINITY).is_some(),
+            Kernel::Parametric => k64::parametric(p, r, f64::INFINITY).is_some(),
+            Kernel::MollerTrumbore => k64::moller_trumbore(p, r, f64::INFINITY).is_some(),
+            _ => k64::watertight(p, r, f64::INFINITY).is_some(),
+        }),
+        (Prims::Spheres(s), Precision::F32) => count_hits(s, rays, |p, r| match kernel {
+            Kernel::SphereGeometric => intersect_geometric(p, r, f32::INFINITY).is_some(),
+            _ => intersect_algebraic(p, r, f32::INFINITY).is_some(),
+        }),
+        (Prims::Spheres(s), Precision::F64) => count_hits(s, r64, |p, r| match kernel {
+            Kernel::SphereGeometric => k64::sphere_geometric(p, r, f64::INFINITY).is_some(),
+            _ => k64::sphere_algebraic(p, r, f64::INFINITY).is_some(),
+        }),
+        (Prims::Shapes { shapes, .. }, Precision::F32) => time_shapes(kernel, shapes, rays),
+        (Prims::Shapes { shapes, .. }, Precision::F64) => count_hits(shapes, r64, |p, r| {
+            let mut doubt = shapes_f64::Doubt::default();
+            shapes_f64::mirror(kernel, p, r, f64::INFINITY, &mut doubt).is_some()
+        }),
+    }
+}
+
+/// The `f32` shape kernel over every ray and shape, each kernel called directly on its own
+/// shape type (as the indices call it, without the [`Shape`] dispatch).
+fn time_shapes(kernel: Kernel, shapes: &[Shape], rays: &[Ray]) -> usize {
+    macro_rules! each {
+        ($variant:ident, $f:path) => {{
+            let typed: Vec<_> = shapes
+                .iter()
+                .filter_map(|s| match s {
+                    Shape::$variant(x) => Some(x.clone()),
+                    _ => None,
+                })
+                .collect();
+            count_hits(&typed, rays, |p, r| $f(p, r, f32::INFINITY).is_some())
+        }};
+    }
+    match kernel {
+        Kernel::BoxFrontPlanes => each!(Box, obb::intersect_front_planes),
+        Kernel::ConvexPolygon => each!(ConvexPolygon, polygon::intersect_convex),
+        Kernel::ConcavePolygon => each!(ConcavePolygon, polygon::intersect_concave),
+        Kernel::Cylinder => each!(Cylinder, cylinder::intersect),
+        Kernel::Cone => each!(Cone, cone::intersect),
+        Kernel::Ellipsoid => each!(Ellipsoid, ellipsoid::intersect),
+        Kernel::BoxSlabs => each!(Box, obb::intersect_slabs),
+        _ => count_hits(shapes, rays, |p, r| {
+            shape_f32(kernel, p, r, f32::INFINITY).is_some()
+        }),
+    }
 }
 
 /// Every ray against every primitive. The kernel is chosen by a `match` inside the closure

@@ -16,12 +16,12 @@ pub struct Ray64 {
     pub dir: DVec3,
     pub t_min: f64,
     pub t_max: f64,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f64,
-    sy: f64,
-    sz: f64,
+    pub(super) kx: usize,
+    pub(super) ky: usize,
+    pub(super) kz: usize,
+    pub(super) sx: f64,
+    pub(super) sy: f64,
+    pub(super) sz: f64,
 }
 
 impl Ray64 {

@@ -1,9 +1,11 @@
 //! Accuracy and numerical stability of the ray–primitive kernels (`accelbench accuracy`).
 //!
-//! - [`study`]: every kernel in `f32` and `f64` on random, vertex/edge-aimed and grazing rays at
-//!   offsets from the origin, against [`reference`] (exact hit/miss by exact edge-function
-//!   signs, double-double `t`): false-miss, false-hit and wrong-primitive rates, relative `t`
-//!   error, ns per test.
+//! - [`study`]: every triangle and sphere kernel in `f32` and `f64` on random, vertex/edge-aimed
+//!   and grazing rays at offsets from the origin, against [`reference`] (exact hit/miss by exact
+//!   edge-function signs, double-double `t`), and every shape kernel in `f32` on random,
+//!   edge/rim/apex-aimed, grazing and inside rays against its `f64` mirror ([`shapes_f64`],
+//!   shapes and rays in [`shape_families`]): false-miss, false-hit and wrong-primitive rates,
+//!   relative `t` error, ns per test.
 //! - [`watertight`]: rays from inside closed meshes far from the origin; misses per kernel and
 //!   per index.
 //! - [`report`]: CSV, plots and the Markdown summary.
@@ -19,6 +21,8 @@ pub mod kernels_f64;
 pub mod metrics;
 pub mod reference;
 pub mod report;
+pub mod shape_families;
+pub mod shapes_f64;
 pub mod study;
 pub mod watertight;
 

@@ -22,15 +22,16 @@ pub struct TradeOff {
     pub error: f64,
 }
 
-/// The plot's points, in row order.
+/// The plot's points, in row order: one per triangle or sphere kernel, precision and family.
 pub fn trade_offs(rows: &[AccuracyRow]) -> Vec<TradeOff> {
+    let rows: Vec<&AccuracyRow> = rows.iter().filter(|r| !r.kernel.is_shape()).collect();
     let mut out: Vec<TradeOff> = Vec::new();
-    for r in rows {
+    for r in &rows {
         let key = (r.kernel, r.precision, r.family);
         if out.iter().any(|p| (p.kernel, p.precision, p.family) == key) {
             continue;
         }
-        let same: Vec<&AccuracyRow> = rows
+        let same: Vec<&&AccuracyRow> = rows
             .iter()
             .filter(|q| (q.kernel, q.precision, q.family) == key)
             .collect();
@@ -43,6 +44,23 @@ pub fn trade_offs(rows: &[AccuracyRow]) -> Vec<TradeOff> {
         });
     }
     out
+}
+
+/// The plot's shape points: one per shape kernel (`f32`), its time on the random family against
+/// its mean relative `t` error over every family and offset.
+pub fn shape_trade_offs(rows: &[AccuracyRow]) -> Vec<(Kernel, f64, f64)> {
+    Kernel::SHAPES
+        .into_iter()
+        .filter_map(|k| {
+            let mine: Vec<&AccuracyRow> = rows.iter().filter(|r| r.kernel == k).collect();
+            let ns = mine
+                .iter()
+                .find(|r| r.family == Family::Random)?
+                .ns_per_test;
+            let err = mine.iter().map(|r| r.mean_rel_t_error).sum::<f64>() / mine.len() as f64;
+            Some((k, ns, err))
+        })
+        .collect()
 }
 
 /// Indices of the points no other point beats in both time and error (an exact duplicate of a
@@ -81,15 +99,16 @@ fn label(k: Kernel, p: Precision) -> String {
     format!("{} {}", k.name(), p.name())
 }
 
-/// Log-log scatter: one series per family, points labelled by kernel and precision, and the
-/// Pareto fronts (triangle kernels, sphere kernels) as lines.
+/// Log-log scatter: one series per family for the triangle and sphere kernels, points labelled
+/// by kernel and precision, one series of the shape kernels (one point each, errors against
+/// their `f64` mirrors), and the Pareto fronts (triangle kernels, sphere kernels) as lines.
 pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
     let pts = trade_offs(rows);
     let xy: Vec<(f64, f64)> = pts
         .iter()
         .map(|p| (p.ns_per_test, p.error.max(ERROR_FLOOR)))
         .collect();
-    let series: Vec<Series> = Family::ALL
+    let mut series: Vec<Series> = Family::MESH
         .iter()
         .map(|&f| {
             let mine: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].family == f).collect();
@@ -103,7 +122,19 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
             }
         })
         .collect();
-    // Triangle and sphere kernels are measured on different primitives: one front each.
+    let shapes = shape_trade_offs(rows);
+    if !shapes.is_empty() {
+        series.push(Series {
+            name: "shape kernels f32 (mean over families)".to_owned(),
+            points: shapes
+                .iter()
+                .map(|&(_, ns, e)| (ns, e.max(ERROR_FLOOR)))
+                .collect(),
+            labels: shapes.iter().map(|(k, _, _)| k.name().to_owned()).collect(),
+        });
+    }
+    // Triangle and sphere kernels are measured on different primitives: one front each (the
+    // shapes are all different primitives, so they get none).
     let fronts: Vec<Series> = [("triangles", false), ("spheres", true)]
         .iter()
         .map(|&(name, spheres)| {
@@ -131,7 +162,7 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
 /// closed mesh aimed at its shared vertices and edges.
 pub fn leak_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
     let mut series: Vec<Series> = Vec::new();
-    for k in Kernel::ALL.into_iter().filter(|k| !k.is_sphere()) {
+    for k in Kernel::ALL.into_iter().filter(|k| k.is_triangle()) {
         for p in [Precision::F32, Precision::F64] {
             let points = rows
                 .iter()
@@ -155,7 +186,9 @@ pub fn leak_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> 
 pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
     let mut s = String::from(
         "# Kernel accuracy\n\nPooled over families and offsets; rates against the exact \
-         reference (exact edge-function signs, double-double t).\n\n\
+         reference (exact edge-function signs, double-double t) for triangles and spheres, \
+         against the f64 mirror of each kernel for the shapes (rays whose mirror decision lies \
+         within its rounding bound are unverifiable and left out).\n\n\
          | kernel | precision | rays | unverifiable | false-miss rate | false-hit rate | \
          wrong-primitive rate | max rel t error | mean rel t error | ns/test (random) |\n\
          |---|---|---|---|---|---|---|---|---|---|\n",
@@ -195,6 +228,7 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
             );
         }
     }
+    shape_table(&mut s, rows);
     s.push_str(
         "\n# Watertightness (rays from inside closed meshes)\n\n\
          | mesh | offset | kernel | index | rays | misses | miss rate | aimed rays | aimed misses |\n\
@@ -216,6 +250,46 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
         );
     }
     s
+}
+
+/// The shape kernels per family (pooled over offsets).
+fn shape_table(s: &mut String, rows: &[AccuracyRow]) {
+    if !rows.iter().any(|r| r.kernel.is_shape()) {
+        return;
+    }
+    s.push_str(
+        "\n# Shape kernels per family (f32 against the f64 mirror, pooled over offsets)\n\n\
+         | kernel | family | rays | unverifiable | false-miss rate | false-hit rate | \
+         max rel t error | mean rel t error | ns/test |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    for k in Kernel::SHAPES {
+        for f in Family::ALL {
+            let mine: Vec<&AccuracyRow> = rows
+                .iter()
+                .filter(|r| r.kernel == k && r.family == f)
+                .collect();
+            let Some(first) = mine.first() else {
+                continue;
+            };
+            let sum = |g: fn(&AccuracyRow) -> usize| mine.iter().map(|r| g(r)).sum::<usize>();
+            let hits = sum(|r| r.reference_hits);
+            let misses = sum(|r| r.rays - r.unverifiable - r.reference_hits);
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.2} |",
+                k.name(),
+                f.name(),
+                sum(|r| r.rays),
+                sum(|r| r.unverifiable),
+                super::metrics::rate(sum(|r| r.false_misses), hits),
+                super::metrics::rate(sum(|r| r.false_hits), misses),
+                mine.iter().map(|r| r.max_rel_t_error).fold(0.0, f64::max),
+                mine.iter().map(|r| r.mean_rel_t_error).sum::<f64>() / mine.len() as f64,
+                first.ns_per_test
+            );
+        }
+    }
 }
 
 #[cfg(test)]

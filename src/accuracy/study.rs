@@ -1,11 +1,14 @@
-//! The time-against-error study: every kernel in `f32` and `f64`, on every ray family, at every
-//! offset, measured against the exact reference (false misses, false hits, wrong primitives,
-//! relative `t` error) and timed (ns per primitive test).
+//! The time-against-error study: every triangle and sphere kernel in `f32` and `f64`, and every
+//! shape kernel in `f32`, on every ray family that applies, at every offset, measured against the
+//! reference (exact for triangles and spheres, the `f64` mirror for shapes: false misses, false
+//! hits, wrong primitives, relative `t` error) and timed (ns per primitive test).
 
 use super::families::{Family, icosphere_at, object_size, sphere_rays, spheres_at, triangle_rays};
 use super::kernels::{Prims, kernel_closest, time_variant, variants};
 use super::kernels_f64::Ray64;
 use super::metrics::{Tally, rate, reference_closest};
+use super::shape_families::{self, shape_at, shape_rays};
+use crate::geometry::{Ray, ShapeError};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -78,83 +81,119 @@ pub struct AccuracyRow {
     pub max_rel_t_error: f64,
     pub mean_rel_t_error: f64,
     /// Nanoseconds per primitive test on this family at the first offset, single thread, best
-    /// of `timing_repeats` (NaN when not timed).
+    /// of `timing_repeats`, each over at least `kernels::MIN_TIMED_TESTS` tests (NaN when not
+    /// timed).
     pub ns_per_test: f64,
 }
 
-/// Runs the study: one row per kernel, precision, family and offset.
-pub fn run(config: &AccuracyConfig) -> Vec<AccuracyRow> {
+/// Runs the study: one row per kernel, precision, family and offset (shape kernels in `f32`
+/// only: their `f64` mirrors are the reference). Errors only if a study shape cannot be built.
+pub fn run(config: &AccuracyConfig) -> Result<Vec<AccuracyRow>, ShapeError> {
     let mut rows = Vec::new();
-    for family in Family::ALL {
+    for family in Family::MESH {
         for spheres in [false, true] {
             if spheres && family.is_edges() {
                 continue;
             }
-            let mut timings: Vec<f64> = Vec::new();
-            for (oi, &offset) in config.offsets.iter().enumerate() {
-                let seed = config.seed ^ (oi as u64) << 32;
-                let (prims, rays) = if spheres {
-                    let s = spheres_at(offset);
-                    let rays = sphere_rays(family, &s, offset, config.rays, seed);
-                    (Prims::Spheres(s), rays)
-                } else {
-                    let t = icosphere_at(config.icosphere_level, offset);
-                    let rays = triangle_rays(family, &t, offset, config.rays, seed);
-                    (Prims::Tris(t), rays)
-                };
-                let vars = variants(spheres);
-                if oi == 0 {
-                    timings = vars
-                        .iter()
-                        .map(|&(k, p)| time_variant(k, p, &prims, &rays, config.timing_repeats))
-                        .collect();
-                }
-                let bsph: Vec<_> = (0..prims.len()).map(|i| prims.bounding_sphere(i)).collect();
-                let tallies = rays
-                    .par_iter()
-                    .fold(
-                        || vec![Tally::default(); vars.len()],
-                        |mut acc, ray| {
-                            let r = reference_closest(&prims, &bsph, ray);
-                            let r64 = Ray64::from_ray(ray);
-                            for (slot, &(k, p)) in acc.iter_mut().zip(&vars) {
-                                let got = kernel_closest(k, p, &prims, ray, &r64);
-                                slot.score(&prims, ray, r, got);
-                            }
-                            acc
-                        },
-                    )
-                    .reduce(
-                        || vec![Tally::default(); vars.len()],
-                        |a, b| a.into_iter().zip(b).map(|(x, y)| x.merge(y)).collect(),
-                    );
-                for ((&(kernel, precision), t), &ns) in vars.iter().zip(tallies).zip(&timings) {
-                    rows.push(AccuracyRow {
-                        kernel,
-                        precision,
-                        family,
-                        offset,
-                        object_size: object_size(offset),
-                        rays: t.rays,
-                        unverifiable: t.unverifiable,
-                        reference_hits: t.ref_hits,
-                        false_misses: t.false_misses,
-                        false_hits: t.false_hits,
-                        wrong_primitives: t.wrong,
-                        false_miss_rate: rate(t.false_misses, t.ref_hits),
-                        false_hit_rate: rate(t.false_hits, t.ref_misses),
-                        wrong_primitive_rate: rate(t.wrong, t.ref_hits),
-                        max_rel_t_error: t.err_max,
-                        mean_rel_t_error: if t.err_n == 0 {
-                            0.0
-                        } else {
-                            t.err_sum / t.err_n as f64
-                        },
-                        ns_per_test: ns,
-                    });
-                }
-            }
+            rows.extend(measure(
+                config,
+                family,
+                &variants(spheres),
+                |offset, seed| {
+                    if spheres {
+                        let s = spheres_at(offset);
+                        let rays = sphere_rays(family, &s, offset, config.rays, seed);
+                        Ok((Prims::Spheres(s), rays))
+                    } else {
+                        let t = icosphere_at(config.icosphere_level, offset);
+                        let rays = triangle_rays(family, &t, offset, config.rays, seed);
+                        Ok((Prims::Tris(t), rays))
+                    }
+                },
+            )?);
         }
     }
-    rows
+    for kernel in Kernel::SHAPES {
+        for family in shape_families::families(kernel) {
+            rows.extend(measure(
+                config,
+                family,
+                &[(kernel, Precision::F32)],
+                |offset, seed| {
+                    let shape = shape_at(kernel, offset)?;
+                    let rays = shape_rays(family, &shape, offset, config.rays, seed);
+                    let shapes = vec![shape];
+                    Ok((Prims::Shapes { shapes, kernel }, rays))
+                },
+            )?);
+        }
+    }
+    Ok(rows)
+}
+
+/// The rows of some kernel variants on one family at every offset; `make` gives the primitives
+/// and rays at an offset (with a seed per offset). Timed at the first offset.
+fn measure(
+    config: &AccuracyConfig,
+    family: Family,
+    vars: &[(Kernel, Precision)],
+    make: impl Fn(f64, u64) -> Result<(Prims, Vec<Ray>), ShapeError>,
+) -> Result<Vec<AccuracyRow>, ShapeError> {
+    let mut rows = Vec::new();
+    let mut timings: Vec<f64> = Vec::new();
+    for (oi, &offset) in config.offsets.iter().enumerate() {
+        let seed = config.seed ^ (oi as u64) << 32;
+        let (prims, rays) = make(offset, seed)?;
+        if oi == 0 {
+            timings = vars
+                .iter()
+                .map(|&(k, p)| time_variant(k, p, &prims, &rays, config.timing_repeats))
+                .collect();
+        }
+        let bsph: Vec<_> = (0..prims.len()).map(|i| prims.bounding_sphere(i)).collect();
+        let tallies = rays
+            .par_iter()
+            .fold(
+                || vec![Tally::default(); vars.len()],
+                |mut acc, ray| {
+                    let r = reference_closest(&prims, &bsph, ray);
+                    let r64 = Ray64::from_ray(ray);
+                    for (slot, &(k, p)) in acc.iter_mut().zip(vars) {
+                        let got = kernel_closest(k, p, &prims, ray, &r64);
+                        slot.score(&prims, ray, r, got);
+                    }
+                    acc
+                },
+            )
+            .reduce(
+                || vec![Tally::default(); vars.len()],
+                |a, b| a.into_iter().zip(b).map(|(x, y)| x.merge(y)).collect(),
+            );
+        for ((&(kernel, precision), t), &ns) in vars.iter().zip(tallies).zip(&timings) {
+            rows.push(AccuracyRow {
+                kernel,
+                precision,
+                family,
+                offset,
+                object_size: object_size(offset),
+                rays: t.rays,
+                unverifiable: t.unverifiable,
+                reference_hits: t.ref_hits,
+                false_misses: t.false_misses,
+                false_hits: t.false_hits,
+                wrong_primitives: t.wrong,
+                false_miss_rate: rate(t.false_misses, t.ref_hits),
+                false_hit_rate: rate(t.false_hits, t.ref_misses),
+                wrong_primitive_rate: rate(t.wrong, t.ref_hits),
+                max_rel_t_error: t.err_max,
+                mean_rel_t_error: if t.err_n == 0 {
+                    0.0
+                } else {
+                    t.err_sum / t.err_n as f64
+                },
+                ns_per_test: ns,
+            });
+        }
+    }
+    Ok(rows)
 }

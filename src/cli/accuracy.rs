@@ -48,7 +48,7 @@ pub fn run(a: AccuracyArgs) -> anyhow::Result<()> {
         "accuracy: {rays} rays per family and offset, {} offsets; watertightness: {leak_rays} rays per mesh and offset",
         study.offsets.len()
     );
-    let rows = with_threads(threads, || accuracy::run(&study))?;
+    let rows = with_threads(threads, || accuracy::run(&study))??;
     let leak_rows = with_threads(threads, || accuracy::watertight::run(&leaks))??;
     accuracy::write_all(&a.out, &rows, &leak_rows)?;
     print!("{}", accuracy::report::markdown(&rows, &leak_rows));

@@ -1,6 +1,10 @@
 //! Conservative primitive–box overlap tests, shared by every spatial subdivision (grid, octree,
-//! kd-tree): a primitive is stored in every cell it really touches, never only in the cells its
-//! bounding box touches, and rounding never leaves it out of a cell it touches.
+//! kd-tree): triangles and spheres are stored in every cell they really touch, never in every
+//! cell their bounding box touches, and rounding never leaves a primitive out of a cell it
+//! touches. The other shapes (`shapes::Shape::overlaps_box`): boxes and convex polygons exactly
+//! too, concave polygons by the fan of triangles from their first vertex (a superset),
+//! cylinders, cones and ellipsoids by their bounding boxes only (conservative: they may sit in
+//! cells they do not touch, costing kernel tests, never hits).
 //!
 //! Conservative means: the box is first padded by a few ulps of its largest coordinate
 //! ([`OVERLAP_PAD`]), so a primitive that touches the closed cell (even on a face, edge or

@@ -78,13 +78,15 @@ struct Run {
 /// Materials per primitive, stored as one entry per object (a run of consecutive ids), so a
 /// million-triangle mesh costs one entry and a lookup is a binary search over the objects.
 ///
-/// Ids are per kind: triangle `i` is primitive `i`, sphere `i` is primitive `n_triangles + i`.
+/// Ids are per kind: triangle `i` is primitive `i`, sphere `i` is primitive `n_triangles + i`,
+/// shape `i` is primitive `n_triangles + n_spheres + i`.
 /// Primitives before the first run, and an empty map, use [`Material::DEFAULT`].
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MaterialMap {
     materials: Vec<Material>,
     triangle_runs: Vec<Run>,
     sphere_runs: Vec<Run>,
+    shape_runs: Vec<Run>,
 }
 
 impl MaterialMap {
@@ -102,6 +104,13 @@ impl MaterialMap {
         push_run(&mut self.sphere_runs, run);
     }
 
+    /// Shapes (boxes, polygons, cylinders, cones, ellipsoids) from `first` on (until the next
+    /// call) use `material`; as [`MaterialMap::start_triangles`].
+    pub fn start_shapes(&mut self, first: usize, material: Option<Material>) {
+        let run = self.run(first, material);
+        push_run(&mut self.shape_runs, run);
+    }
+
     /// The material of triangle `i`.
     #[inline]
     pub fn triangle(&self, i: usize) -> &Material {
@@ -112,6 +121,12 @@ impl MaterialMap {
     #[inline]
     pub fn sphere(&self, i: usize) -> &Material {
         self.lookup(&self.sphere_runs, i)
+    }
+
+    /// The material of shape `i` (counted among shapes).
+    #[inline]
+    pub fn shape(&self, i: usize) -> &Material {
+        self.lookup(&self.shape_runs, i)
     }
 
     /// The distinct materials given (the default not included).
@@ -174,12 +189,16 @@ mod tests {
         m.start_triangles(20, Some(blue));
         m.start_triangles(20, Some(red)); // an empty object is replaced
         m.start_spheres(3, Some(blue));
+        m.start_shapes(1, Some(red));
         assert_eq!(*m.triangle(0), red);
         assert_eq!(*m.triangle(9), red);
         assert_eq!(*m.triangle(10), Material::DEFAULT);
         assert_eq!(*m.triangle(1_000_000), red);
         assert_eq!(*m.sphere(2), Material::DEFAULT);
         assert_eq!(*m.sphere(3), blue);
+        assert_eq!(*m.shape(0), Material::DEFAULT);
+        assert_eq!(*m.shape(1), red);
+        assert_eq!(*m.shape(7), red);
         assert_eq!(m.materials().len(), 2, "equal materials are stored once");
     }
 

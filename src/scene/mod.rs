@@ -185,15 +185,14 @@ impl Scene {
         Ok(scene)
     }
 
-    /// The material of primitive `prim` (triangles first, then spheres).
+    /// The material of primitive `prim` (triangles first, then spheres, then shapes).
     #[inline]
     pub fn material(&self, prim: u32) -> &Material {
         let i = prim as usize;
         match i.checked_sub(self.triangles.len()) {
             None => self.materials.triangle(i),
             Some(s) if s < self.spheres.len() => self.materials.sphere(s),
-            // Shapes take the default material (scene files give shapes no material yet).
-            Some(_) => &Material::DEFAULT,
+            Some(s) => self.materials.shape(s - self.spheres.len()),
         }
     }
 

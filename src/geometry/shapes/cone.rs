@@ -60,6 +60,16 @@ impl Cone {
         self.radius
     }
 
+    /// Unit axis from the apex to the base (as stored: the kernel's `f32` values).
+    pub fn axis(&self) -> Vec3A {
+        self.axis
+    }
+
+    /// Distance from the apex to the base (as stored).
+    pub fn height(&self) -> f32 {
+        self.height
+    }
+
     /// The base disc's bounds grown by the apex.
     pub fn bounds(&self) -> Aabb {
         self.bounds

@@ -55,6 +55,16 @@ impl Cylinder {
         self.radius
     }
 
+    /// Unit axis from the base to the top (as stored: the kernel's `f32` values).
+    pub fn axis(&self) -> Vec3A {
+        self.axis
+    }
+
+    /// Distance from the base to the top (as stored).
+    pub fn height(&self) -> f32 {
+        self.height
+    }
+
     /// The union of the two cap discs' bounds.
     pub fn bounds(&self) -> Aabb {
         self.bounds

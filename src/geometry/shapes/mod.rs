@@ -111,12 +111,18 @@ impl Shape {
         }
     }
 
-    /// Conservative overlap with a closed box (never a false "no"; see each kind for how exact).
+    /// Conservative overlap with a closed box (never a false "no"), as exact as is cheap:
+    /// - box: separating axes, exact up to the cell padding;
+    /// - convex polygon: exact (fan of triangles, each by the triangle–box test); concave
+    ///   polygon: that fan, which covers it (a superset);
+    /// - cylinder, cone, ellipsoid: their padded bounding boxes against the cell only. A cell that
+    ///   meets the bounds but not the solid (near the bounds' corners and edges) holds the shape
+    ///   anyway: more kernel tests in those cells, never a lost hit.
     pub fn overlaps_box(&self, cell: &Aabb) -> bool {
         match self {
             Shape::Box(b) => b.overlaps_box(cell),
             Shape::ConvexPolygon(p) | Shape::ConcavePolygon(p) => p.overlaps_box(cell),
-            // Curved solids: bounding-box overlap (conservative, cheap).
+            // Curved solids: bounding-box overlap (conservative, cheap; see above).
             Shape::Cylinder(_) | Shape::Cone(_) | Shape::Ellipsoid(_) => {
                 bounds_overlap(&self.bounds(), cell)
             }

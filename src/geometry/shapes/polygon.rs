@@ -91,6 +91,11 @@ impl Polygon {
         self.bounds
     }
 
+    /// The point on the plane the kernels intersect (the vertices' centroid, rounded).
+    pub fn anchor(&self) -> Vec3A {
+        self.anchor
+    }
+
     /// `true` when every turn is to the left around the normal (collinear vertices allowed) and
     /// the exterior angles add up to one full turn (a pentagram turns twice).
     pub fn is_convex(&self) -> bool {

@@ -119,6 +119,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                     .materials
                     .start_triangles(scene.triangles.len(), material);
                 scene.materials.start_spheres(scene.spheres.len(), material);
+                scene.materials.start_shapes(scene.shapes.len(), material);
                 scene
                     .triangles
                     .extend(generated.triangles.iter().map(|tri| t.triangle(tri)));
@@ -156,6 +157,9 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 let local = local.map_err(|e| at(&what, &e))?;
                 let (scale, rotate, translate) = s.placement();
                 let t = transform(scale, rotate, translate).map_err(|e| at(&what, &e))?;
+                let material =
+                    material(s.material(), &file.materials).map_err(|e| at(&what, &e))?;
+                scene.materials.start_shapes(scene.shapes.len(), material);
                 scene
                     .shapes
                     .push(t.shape(&local).map_err(|e| at(&what, &e))?);

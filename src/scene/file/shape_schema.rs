@@ -1,6 +1,7 @@
 //! `[[shape]]` tables of the scene format: one primitive of the kinds in
 //! [`crate::geometry::shapes`], chosen by `kind`, given in its own coordinates and placed by the
-//! same `scale`, `rotate`, `translate` keys as `[[mesh]]`. Unknown keys are rejected.
+//! same `scale`, `rotate`, `translate` keys as `[[mesh]]`, with the same optional `material` key
+//! as every other object. Unknown keys are rejected.
 //!
 //! ```toml
 //! [[shape]]
@@ -30,9 +31,10 @@
 //! center = [0, 0, 0]
 //! radii = [0.3, 0.2, 0.1]
 //! scale = 2
+//! material = "red"                     # any kind: a [material.NAME] or an inline table
 //! ```
 
-use super::schema::{RotateSpec, ScaleSpec};
+use super::schema::{MaterialRef, RotateSpec, ScaleSpec};
 use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
 use crate::geometry::{Shape, ShapeError};
 use glam::{Mat3A, Vec3A};
@@ -58,6 +60,7 @@ pub struct BoxEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -67,6 +70,7 @@ pub struct PolygonEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -78,6 +82,7 @@ pub struct CylinderEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -89,6 +94,7 @@ pub struct ConeEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -99,6 +105,7 @@ pub struct EllipsoidEntry {
     pub scale: Option<ScaleSpec>,
     pub rotate: Option<RotateSpec>,
     pub translate: Option<[f64; 3]>,
+    pub material: Option<MaterialRef>,
 }
 
 /// The `scale`, `rotate` and `translate` keys of an entry.
@@ -140,6 +147,17 @@ impl ShapeEntry {
         })
     }
 
+    /// The entry's `material` key.
+    pub fn material(&self) -> &Option<MaterialRef> {
+        match self {
+            ShapeEntry::Box(e) => &e.material,
+            ShapeEntry::ConvexPolygon(e) | ShapeEntry::ConcavePolygon(e) => &e.material,
+            ShapeEntry::Cylinder(e) => &e.material,
+            ShapeEntry::Cone(e) => &e.material,
+            ShapeEntry::Ellipsoid(e) => &e.material,
+        }
+    }
+
     /// The entry's transform keys.
     pub fn placement(&self) -> Placement {
         match self {
@@ -158,7 +176,7 @@ impl ShapeEntry {
 mod tests {
     use crate::geometry::{Ray, Shape};
     use crate::scene::file::load_scene_file;
-    use crate::scene::{Scene, SceneError};
+    use crate::scene::{Material, Scene, SceneError};
     use glam::{Vec3, Vec3A};
 
     fn load(toml: &str) -> Result<Scene, SceneError> {
@@ -244,6 +262,67 @@ translate = [10, 0, 0]
         // The ellipsoid's z radius is 6 after the scale.
         let bz = s.shapes[5].bounds();
         assert!((bz.max.z - 6.0).abs() < 1e-4, "{bz:?}");
+    }
+
+    #[test]
+    fn shapes_take_materials_by_name_or_inline() {
+        let s = load(
+            r#"
+[material.gold]
+color = [1, 0.8, 0.1]
+specular = 0.9
+[[sphere]]
+center = [0, 0, 9]
+radius = 1
+[[shape]]
+kind = "box"
+center = [0, 0, 0]
+half_extents = [1, 1, 1]
+material = "gold"
+[[shape]]
+kind = "ellipsoid"
+center = [0, 0, 3]
+radii = [1, 2, 3]
+[[shape]]
+kind = "cone"
+base = [0, 0, 0]
+apex = [0, 1, 0]
+radius = 0.5
+material = { color = [0, 0, 1], emission = [0.2, 0.2, 0.2] }
+[[generator]]
+name = "shapes"
+n = 16
+material = "gold"
+"#,
+        )
+        .unwrap();
+        let gold = Material {
+            color: glam::Vec3::new(1.0, 0.8, 0.1),
+            specular: 0.9,
+            ..Material::DEFAULT
+        };
+        // Ids: the generator's triangles, the sphere, the generator's spheres, then the shapes
+        // in file order.
+        let first_shape = (s.triangles.len() + s.spheres.len()) as u32;
+        let sphere = s.triangles.len() as u32;
+        assert_eq!(
+            *s.material(sphere),
+            Material::DEFAULT,
+            "the sphere has none"
+        );
+        assert_eq!(*s.material(0), gold, "the generator's triangles");
+        assert_eq!(*s.material(first_shape), gold);
+        assert_eq!(*s.material(first_shape + 1), Material::DEFAULT);
+        let cone = s.material(first_shape + 2);
+        assert_eq!(cone.color, glam::Vec3::Z);
+        assert_eq!(cone.emission, glam::Vec3::splat(0.2));
+        // The generator's shapes (after the three tables) take its material.
+        assert!(s.shapes.len() > 3);
+        assert_eq!(*s.material(s.len() as u32 - 1), gold);
+        // An undefined name is an error naming the table.
+        let e = load("[[shape]]\nkind = \"box\"\ncenter = [0,0,0]\nhalf_extents = [1,1,1]\nmaterial = \"tin\"\n")
+            .expect_err("undefined material");
+        assert!(e.to_string().contains("[material.tin]"), "{e}");
     }
 
     #[test]
