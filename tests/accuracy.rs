@@ -78,8 +78,10 @@ fn small_study_measures_every_kernel_against_the_exact_reference() {
     let dir = tempfile::tempdir().unwrap();
     accuracy::write_all(dir.path(), &all, &[]).unwrap();
     let svg = std::fs::read_to_string(dir.path().join("time_vs_error.svg")).unwrap();
-    assert!(svg.contains("Pareto front"));
-    assert!(svg.contains("shape kernels") && svg.contains("box-front-planes"));
+    assert!(svg.contains("Pareto front") && !svg.contains("box-front-planes"));
+    let svg = std::fs::read_to_string(dir.path().join("shapes_time_vs_error.svg")).unwrap();
+    assert!(svg.contains("Shape kernels") && svg.contains("box-front-planes"));
+    assert!(svg.contains("edges-outside") && svg.contains("grazing"));
     let md = std::fs::read_to_string(dir.path().join("accuracy.md")).unwrap();
     assert!(md.contains("| cone | inside |"), "{md}");
 }
@@ -108,6 +110,7 @@ fn accuracy_command_writes_csv_and_plots() {
         "accuracy.csv",
         "watertight.csv",
         "time_vs_error.svg",
+        "shapes_time_vs_error.svg",
         "leaks_vs_offset.svg",
         "accuracy.md",
     ] {

@@ -22,9 +22,13 @@ pub struct TradeOff {
     pub error: f64,
 }
 
-/// The plot's points, in row order: one per triangle or sphere kernel, precision and family.
-pub fn trade_offs(rows: &[AccuracyRow]) -> Vec<TradeOff> {
-    let rows: Vec<&AccuracyRow> = rows.iter().filter(|r| !r.kernel.is_shape()).collect();
+/// A plot's points, in row order: one per kernel, precision and family, of the shape kernels
+/// (`shapes`) or of the triangle and sphere kernels.
+pub fn trade_offs(rows: &[AccuracyRow], shapes: bool) -> Vec<TradeOff> {
+    let rows: Vec<&AccuracyRow> = rows
+        .iter()
+        .filter(|r| r.kernel.is_shape() == shapes)
+        .collect();
     let mut out: Vec<TradeOff> = Vec::new();
     for r in &rows {
         let key = (r.kernel, r.precision, r.family);
@@ -44,23 +48,6 @@ pub fn trade_offs(rows: &[AccuracyRow]) -> Vec<TradeOff> {
         });
     }
     out
-}
-
-/// The plot's shape points: one per shape kernel (`f32`), its time on the random family against
-/// its mean relative `t` error over every family and offset.
-pub fn shape_trade_offs(rows: &[AccuracyRow]) -> Vec<(Kernel, f64, f64)> {
-    Kernel::SHAPES
-        .into_iter()
-        .filter_map(|k| {
-            let mine: Vec<&AccuracyRow> = rows.iter().filter(|r| r.kernel == k).collect();
-            let ns = mine
-                .iter()
-                .find(|r| r.family == Family::Random)?
-                .ns_per_test;
-            let err = mine.iter().map(|r| r.mean_rel_t_error).sum::<f64>() / mine.len() as f64;
-            Some((k, ns, err))
-        })
-        .collect()
 }
 
 /// Indices of the points no other point beats in both time and error (an exact duplicate of a
@@ -87,6 +74,9 @@ pub fn write_all(dir: &Path, rows: &[AccuracyRow], leaks: &[LeakRow]) -> Result<
     write_csv(&dir.join("accuracy.csv"), rows)?;
     write_csv(&dir.join("watertight.csv"), leaks)?;
     time_vs_error_chart(&dir.join("time_vs_error.svg"), rows)?;
+    if rows.iter().any(|r| r.kernel.is_shape()) {
+        shape_time_vs_error_chart(&dir.join("shapes_time_vs_error.svg"), rows)?;
+    }
     leak_chart(&dir.join("leaks_vs_offset.svg"), rows)?;
     let md = markdown(rows, leaks);
     std::fs::write(dir.join("accuracy.md"), md).map_err(|e| ReportError::Write {
@@ -99,40 +89,39 @@ fn label(k: Kernel, p: Precision) -> String {
     format!("{} {}", k.name(), p.name())
 }
 
+/// One series per family, each point labelled by kernel (and precision).
+fn family_series(pts: &[TradeOff], families: &[Family], precision_in_label: bool) -> Vec<Series> {
+    families
+        .iter()
+        .map(|&f| {
+            let mine: Vec<&TradeOff> = pts.iter().filter(|p| p.family == f).collect();
+            Series {
+                name: f.name().to_owned(),
+                points: mine
+                    .iter()
+                    .map(|p| (p.ns_per_test, p.error.max(ERROR_FLOOR)))
+                    .collect(),
+                labels: mine
+                    .iter()
+                    .map(|p| match precision_in_label {
+                        true => label(p.kernel, p.precision),
+                        false => p.kernel.name().to_owned(),
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
 /// Log-log scatter: one series per family for the triangle and sphere kernels, points labelled
-/// by kernel and precision, one series of the shape kernels (one point each, errors against
-/// their `f64` mirrors), and the Pareto fronts (triangle kernels, sphere kernels) as lines.
+/// by kernel and precision, and the Pareto fronts (triangle kernels, sphere kernels) as lines.
 pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
-    let pts = trade_offs(rows);
+    let pts = trade_offs(rows, false);
     let xy: Vec<(f64, f64)> = pts
         .iter()
         .map(|p| (p.ns_per_test, p.error.max(ERROR_FLOOR)))
         .collect();
-    let mut series: Vec<Series> = Family::MESH
-        .iter()
-        .map(|&f| {
-            let mine: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].family == f).collect();
-            Series {
-                name: f.name().to_owned(),
-                points: mine.iter().map(|&i| xy[i]).collect(),
-                labels: mine
-                    .iter()
-                    .map(|&i| label(pts[i].kernel, pts[i].precision))
-                    .collect(),
-            }
-        })
-        .collect();
-    let shapes = shape_trade_offs(rows);
-    if !shapes.is_empty() {
-        series.push(Series {
-            name: "shape kernels f32 (mean over families)".to_owned(),
-            points: shapes
-                .iter()
-                .map(|&(_, ns, e)| (ns, e.max(ERROR_FLOOR)))
-                .collect(),
-            labels: shapes.iter().map(|(k, _, _)| k.name().to_owned()).collect(),
-        });
-    }
+    let series = family_series(&pts, &Family::MESH, true);
     // Triangle and sphere kernels are measured on different primitives: one front each (the
     // shapes are all different primitives, so they get none).
     let fronts: Vec<Series> = [("triangles", false), ("spheres", true)]
@@ -156,6 +145,21 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
     chart.log_x = true;
     chart.log_y = true;
     scatter_chart_with_lines(path, &chart, &series, &fronts)
+}
+
+/// Log-log scatter of the shape kernels (`f32` against their `f64` mirrors): one series per
+/// family, points labelled by kernel. No Pareto front: every shape is a different primitive.
+pub fn shape_time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
+    let pts = trade_offs(rows, true);
+    let series = family_series(&pts, &Family::ALL, false);
+    let mut chart = Chart::new(
+        "Shape kernels (f32 against an f64 mirror): time against error",
+        "ns per primitive test (single thread, best of repeats)",
+        "mean relative t error (0 drawn at 1e-18)",
+    );
+    chart.log_x = true;
+    chart.log_y = true;
+    scatter_chart_with_lines(path, &chart, &series, &[])
 }
 
 /// False-miss (leak) rate of each triangle kernel against the offset, rays from inside the

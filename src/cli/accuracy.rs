@@ -1,6 +1,6 @@
 //! `accelbench accuracy`: kernel time against error, and watertightness of closed meshes far
 //! from the origin; writes `accuracy.csv`, `watertight.csv`, `time_vs_error.svg`,
-//! `leaks_vs_offset.svg` and `accuracy.md`.
+//! `shapes_time_vs_error.svg`, `leaks_vs_offset.svg` and `accuracy.md`.
 
 use super::{parse_threads, with_threads};
 use crate::accuracy::{self, AccuracyConfig, WatertightConfig};
