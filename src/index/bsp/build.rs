@@ -239,7 +239,7 @@ impl<G: Geometry> Builder<'_, G> {
                 traversal: l.traversal,
                 empty_bonus: l.empty_bonus,
             };
-            let mut events = Vec::new();
+            let mut events = Default::default();
             if let Some((axis, s, cost)) =
                 best_axis_split(n, |i| refs[i].b, cell, self.pad, &w, &mut events)
             {
