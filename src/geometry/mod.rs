@@ -7,6 +7,7 @@ pub mod float;
 mod hit;
 pub mod overlap;
 mod plane;
+pub mod polyhedron;
 mod ray;
 pub mod shapes;
 pub mod sphere;

@@ -2,13 +2,16 @@
 //! quantiles of the primitives' bounds, and the own planes of sampled triangles,
 //! autopartition-style) are scored by a cost estimate and the cheapest one splits the node.
 //!
-//! Axis planes: the kd-tree's full SAH sweep over perfect-split candidates (optionally also
-//! `axis_candidates` quantile positions). General planes: the cost estimate is the SAH
-//! `traversal + intersect * (A(below) N(below) + A(above) N(above)) / A` (with the same
-//! empty-space bonus) over the bounding boxes of the cells. Each node keeps a box around its convex cell (the
-//! parent's box cut by the plane, [`box_halfspace_bounds`]); we do not track the cells' exact
-//! polyhedra, so areas are those of the boxes, an estimate of the exact cell-area SAH of Ize,
-//! Wald & Parker (2008).
+//! Every candidate is scored by the SAH `traversal + intersect * (A(below) N(below) + A(above)
+//! N(above)) / A` (with the kd-tree's empty-space bonus) over the exact surface areas of the
+//! convex cells (Ize, Wald & Parker 2008): each node carries its cell as a
+//! [`ConvexPolyhedron`], and a candidate's two areas come from cutting it by the plane. Axis
+//! candidates: the best plane of the kd-tree's SAH sweep over perfect-split candidates in the
+//! cell's bounding box (box areas find the position, exact areas score it), and optionally
+//! `axis_candidates` quantile positions. A plane that leaves either side of the cell without
+//! volume is not a candidate. Each node also keeps a conservative box around its cell (the
+//! parent's box cut by the plane, [`box_halfspace_bounds`], and by the polyhedron's bounds
+//! grown by `pad`) to clip its references' bounds.
 //!
 //! Classification is conservative: a primitive goes below a plane when its extent along the
 //! normal, grown by `pad`, starts below the offset, and above when it ends above it; within
@@ -19,6 +22,7 @@
 use super::node::{BspNode, MAX_LINK};
 use crate::geometry::Aabb;
 use crate::geometry::clip::box_halfspace_bounds;
+use crate::geometry::polyhedron::ConvexPolyhedron;
 use crate::index::BuildError;
 use crate::index::kdtree::sweep::{Weights, best_axis_split};
 use crate::scene::Geometry;
@@ -92,7 +96,7 @@ pub(super) fn build<G: Geometry>(
             axis_splits: 0,
         },
     };
-    b.node(refs, root, 0)?;
+    b.node(refs, root, ConvexPolyhedron::from_box(&root), 0)?;
     Ok(b.out)
 }
 
@@ -106,9 +110,15 @@ fn too_big() -> BuildError {
 }
 
 impl<G: Geometry> Builder<'_, G> {
-    /// Builds the subtree of a cell whose bounding box is `cell` (a box around the convex cell:
-    /// axis planes shrink it, general planes leave it).
-    fn node(&mut self, refs: Vec<Ref>, cell: Aabb, depth: u32) -> Result<(), BuildError> {
+    /// Builds the subtree of the convex cell `poly` (for costs) with the conservative bounding
+    /// box `cell` (for clipping references).
+    fn node(
+        &mut self,
+        refs: Vec<Ref>,
+        cell: Aabb,
+        poly: ConvexPolyhedron,
+        depth: u32,
+    ) -> Result<(), BuildError> {
         let at = self.out.nodes.len();
         if at as u64 > MAX_LINK as u64 {
             return Err(too_big());
@@ -117,18 +127,24 @@ impl<G: Geometry> Builder<'_, G> {
         {
             None
         } else {
-            self.best_plane(&refs, &cell)
+            self.best_plane(&refs, &cell, &poly)
         };
         let Some(plane) = plane else {
             return self.leaf(&refs, depth);
         };
+        let (below_poly, above_poly) = poly.split(plane.normal, plane.offset);
+        drop(poly);
         let (below_cell, above_cell) = self.child_cells(&cell, &plane);
+        let (below_cell, above_cell) = (
+            self.tighten(below_cell, &below_poly),
+            self.tighten(above_cell, &above_poly),
+        );
         self.out.axis_splits += plane.axis.is_some() as usize;
         let (below, above) = self.classify(refs, &plane, &below_cell, &above_cell);
         self.out.nodes.push(BspNode::leaf(0, 0)); // placeholder, patched below
-        self.node(below, below_cell, depth + 1)?;
+        self.node(below, below_cell, below_poly, depth + 1)?;
         let above_at = self.out.nodes.len() as u32;
-        self.node(above, above_cell, depth + 1)?;
+        self.node(above, above_cell, above_poly, depth + 1)?;
         self.out.nodes[at] = BspNode::interior(plane.normal, plane.offset, above_at);
         Ok(())
     }
@@ -168,6 +184,18 @@ impl<G: Geometry> Builder<'_, G> {
             grow(box_halfspace_bounds(cell, p.normal, p.offset, true)),
             grow(box_halfspace_bounds(cell, p.normal, p.offset, false)),
         )
+    }
+
+    /// `cell` cut to the bounds of the cell's polyhedron grown by `pad` (which covers the
+    /// polyhedron's `f64` rounding many times over), or `cell` when rounding emptied either.
+    fn tighten(&self, cell: Aabb, poly: &ConvexPolyhedron) -> Aabb {
+        let b = poly.bounds();
+        if b.is_empty() {
+            return cell;
+        }
+        let pad = Vec3A::splat(self.pad);
+        let t = cell.intersection(Aabb::new(b.min - pad, b.max + pad));
+        if t.is_empty() { cell } else { t }
     }
 
     /// `(below, above)`: the sides a reference goes to (at least one).
@@ -222,38 +250,41 @@ impl<G: Geometry> Builder<'_, G> {
     }
 
     /// The cheapest plane, if cheaper than a leaf and separating something: the best axis
-    /// plane of the full SAH sweep (as in the kd-tree, or at `axis_candidates` quantiles when
-    /// `sweep` is off), against the own planes of sampled primitives.
-    fn best_plane(&self, refs: &[Ref], cell: &Aabb) -> Option<Plane> {
-        let area = cell.surface_area();
-        if area <= 0.0 || !area.is_finite() {
+    /// plane of the full SAH sweep over the cell's box (as in the kd-tree, when `sweep` is
+    /// on), axis planes at `axis_candidates` quantiles and the own planes of sampled
+    /// primitives, all scored by the SAH over the exact surface areas of the cell's polyhedron
+    /// and of its two parts (Ize, Wald & Parker 2008).
+    fn best_plane(&self, refs: &[Ref], cell: &Aabb, poly: &ConvexPolyhedron) -> Option<Plane> {
+        let area = poly.area();
+        if area <= 0.0 || !area.is_finite() || cell.surface_area() <= 0.0 {
             return None;
         }
         let l = self.limits;
         let n = refs.len();
-        let mut best = None;
-        let mut best_cost = l.intersect * n as f32;
+        let mut planes = Vec::new();
         if l.sweep {
             let w = Weights {
                 intersect: l.intersect,
                 traversal: l.traversal,
                 empty_bonus: l.empty_bonus,
             };
-            let mut events = Vec::new();
-            if let Some((axis, s, cost)) =
+            let mut events = Default::default();
+            if let Some((axis, s, _)) =
                 best_axis_split(n, |i| refs[i].b, cell, self.pad, &w, &mut events)
             {
                 let mut normal = Vec3A::ZERO;
                 normal[axis] = 1.0;
-                best_cost = cost;
-                best = Some(Plane {
+                planes.push(Plane {
                     normal,
                     offset: s,
                     axis: Some(axis),
                 });
             }
         }
-        for p in self.candidates(refs, cell) {
+        planes.extend(self.candidates(refs, cell));
+        let mut best = None;
+        let mut best_cost = l.intersect as f64 * n as f64;
+        for p in planes {
             let (mut nb, mut na) = (0usize, 0usize);
             for r in refs {
                 let (below, above) = self.sides(r, &p);
@@ -263,17 +294,17 @@ impl<G: Geometry> Builder<'_, G> {
             if nb == n && na == n {
                 continue; // separates nothing
             }
-            let (cb, ca) = self.child_cells(cell, &p);
+            let (ab, aa) = poly.split_areas(p.normal, p.offset);
+            if ab <= 0.0 || aa <= 0.0 {
+                continue; // misses the cell
+            }
             let bonus = if nb == 0 || na == 0 {
-                1.0 - l.empty_bonus
+                1.0 - l.empty_bonus as f64
             } else {
                 1.0
             };
-            let cost = l.traversal
-                + l.intersect
-                    * bonus
-                    * (cb.surface_area() * nb as f32 + ca.surface_area() * na as f32)
-                    / area;
+            let cost = l.traversal as f64
+                + l.intersect as f64 * bonus * (ab * nb as f64 + aa * na as f64) / area;
             if cost < best_cost {
                 best_cost = cost;
                 best = Some(p);

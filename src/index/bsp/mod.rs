@@ -11,10 +11,12 @@
 //! `pad` of a plane is on both sides) and the strict skip rule, hits match brute force.
 //!
 //! Build time (one core, release, default parameters): the Stanford bunny (69,451 triangles)
-//! takes 1.6 to 3 s (0.82 M nodes, 8.3 references per triangle, 22 MB), of which the own-plane
-//! candidates add about a third; on the bunny they almost never beat the axis sweep (see
-//! `cargo test --release --test bsp -- --ignored --nocapture`). The candidate counts,
-//! `max_depth` and `leaf_size` cap it (time grows linearly with the number of candidates).
+//! takes about 5.5 s on a loaded 2-core machine (0.84 M nodes, 8.5 references per triangle,
+//! 22 MB), about twice the time of box-area costs: every candidate cuts the cell's polyhedron.
+//! Even scored by the exact cell areas, the own planes win few splits (0.06% on the bunny, 0.04%
+//! on a 20k-triangle icosphere; see `cargo test --release --test bsp -- --nocapture`). The
+//! candidate counts, `max_depth` and `leaf_size` cap it (time grows linearly with the number of
+//! candidates).
 
 mod build;
 mod node;

@@ -1,19 +1,24 @@
-//! SAH kd-tree construction with perfect splits.
+//! SAH kd-tree construction with perfect splits in `O(N log N)` (Wald & Havran 2006).
 //!
 //! Candidate planes are the faces of the primitives' bounds clipped to the node (perfect splits,
-//! Havran 2000), padded outward by `pad`. At every node the events of each axis are sorted and
-//! swept once (the O(N log^2 N) variant of Wald & Havran 2006: a sort per node instead of one
-//! global sort kept in order by splitting; simpler, and the bunny still builds in well under a
-//! few seconds). The cost is the SAH with an empty-space bonus; a node becomes a leaf when no
-//! split is cheaper than testing its primitives, at `max_depth`, or at `leaf_size` primitives.
+//! Havran 2000), padded outward by `pad`. The events of all primitives are sorted once per axis
+//! at the root; each node finds its plane by one linear sweep per axis
+//! ([`best_split_sorted`]) and hands its children event lists that are still sorted: the events
+//! of primitives on one side only are filtered in order, and only the primitives on both sides,
+//! clipped again to each child's cell, get new events, which are sorted (there are few) and
+//! merged in. The cost is the SAH with an empty-space bonus; a node becomes a leaf when no split
+//! is cheaper than testing its primitives, at `max_depth`, or at `leaf_size` primitives.
 //!
 //! Classification is conservative: a primitive goes below a plane `s` when its clipped bounds,
 //! grown by `pad`, start before `s`, and above when they end after `s`. So a primitive within
 //! `pad` of the plane (touching it, lying in it, or rounding near it) is stored on both sides.
 //! A primitive stored on both sides is clipped again to each child's cell (grown by `pad`).
+//!
+//! The tree is the one a per-node sort of the same events gives (the test module keeps that
+//! builder as an oracle and compares the trees node for node).
 
 use super::node::{KdNode, MAX_PAYLOAD};
-use super::sweep::{Event, Weights, best_axis_split};
+use super::sweep::{Event, MAX_ITEM, Weights, best_split_sorted, push_events};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
 use crate::scene::Geometry;
@@ -28,11 +33,14 @@ pub(super) struct Costs {
     pub leaf_size: u32,
 }
 
-/// A primitive reference in a node: its id and the conservative bounds of its part in the cell.
-#[derive(Debug, Clone, Copy)]
-struct Ref {
-    prim: u32,
-    b: Aabb,
+impl Costs {
+    fn weights(&self) -> Weights {
+        Weights {
+            intersect: self.intersect,
+            traversal: self.traversal,
+            empty_bonus: self.empty_bonus,
+        }
+    }
 }
 
 /// The flattened tree and figures for reports.
@@ -44,13 +52,31 @@ pub(super) struct Built {
     pub empty_leaves: usize,
 }
 
+/// The events of a node's primitives on each axis, each list sorted by [`Event::order`]; the
+/// items are primitive ids (a primitive is at most once in a node), and every primitive of the
+/// node has exactly one start and one end event per axis.
+type Events = [Vec<Event>; 3];
+
+/// Where a node's primitive goes at the chosen plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Side {
+    Below,
+    Above,
+    Both,
+}
+
 struct Builder<'a, G: Geometry> {
     geom: &'a G,
     costs: &'a Costs,
     pad: f32,
     nodes: Vec<KdNode>,
     ids: Vec<u32>,
-    events: Vec<Event>,
+    /// Scratch, by primitive id: the side of each primitive of the node being split.
+    side: Vec<Side>,
+    /// Scratch: the primitives of the node being split that go to both sides.
+    straddling: Vec<u32>,
+    /// Event lists no node uses any more, kept for their allocations (cleared when taken).
+    pool: Vec<Vec<Event>>,
     depth: usize,
     leaves: usize,
     empty_leaves: usize,
@@ -64,24 +90,31 @@ pub(super) fn build<G: Geometry>(
     pad: f32,
     costs: &Costs,
 ) -> Result<Built, BuildError> {
-    let refs: Vec<Ref> = (0..geom.len() as u32)
-        .map(|prim| Ref {
-            prim,
-            b: geom.bounds(prim),
-        })
-        .collect();
+    if geom.len() > MAX_ITEM as usize {
+        return Err(too_big("primitives"));
+    }
+    let n = geom.len();
+    let mut events: Events = std::array::from_fn(|_| Vec::with_capacity(2 * n));
+    for prim in 0..n as u32 {
+        push_events(&mut events, &geom.bounds(prim), pad, prim);
+    }
+    for list in &mut events {
+        list.sort_unstable_by(Event::order);
+    }
     let mut b = Builder {
         geom,
         costs,
         pad,
         nodes: Vec::new(),
         ids: Vec::new(),
-        events: Vec::new(),
+        side: vec![Side::Both; n],
+        straddling: Vec::new(),
+        pool: Vec::new(),
         depth: 0,
         leaves: 0,
         empty_leaves: 0,
     };
-    b.node(refs, root, 0)?;
+    b.node(events, n, root, 0)?;
     Ok(Built {
         nodes: b.nodes,
         ids: b.ids,
@@ -101,98 +134,128 @@ fn too_big(what: &str) -> BuildError {
 }
 
 impl<G: Geometry> Builder<'_, G> {
-    fn node(&mut self, refs: Vec<Ref>, cell: Aabb, depth: u32) -> Result<(), BuildError> {
+    /// Builds the subtree of `cell` over the `n` primitives with events `events`.
+    fn node(&mut self, events: Events, n: usize, cell: Aabb, depth: u32) -> Result<(), BuildError> {
         let at = self.nodes.len();
         if at as u64 > MAX_PAYLOAD as u64 {
             return Err(too_big("nodes"));
         }
-        let split = if refs.len() as u32 <= self.costs.leaf_size || depth >= self.costs.max_depth {
+        let split = if n as u32 <= self.costs.leaf_size || depth >= self.costs.max_depth {
             None
         } else {
-            self.best_split(&refs, &cell)
+            best_split_sorted(&events, n, &cell, &self.costs.weights()).map(|(a, s, _)| (a, s))
         };
         let Some((axis, s)) = split else {
-            return self.leaf(&refs, depth);
+            let leaf = self.leaf(&events[0], depth);
+            self.pool.extend(events);
+            return leaf;
         };
         let (below_cell, above_cell) = split_cell(&cell, axis, s);
-        let (below, above) = self.classify(refs, axis, s, &below_cell, &above_cell);
+        let ((below, nb), (above, na)) = self.partition(events, axis, s, &below_cell, &above_cell);
         self.nodes.push(KdNode::leaf(0, 0)); // placeholder, patched below
-        self.node(below, below_cell, depth + 1)?;
+        self.node(below, nb, below_cell, depth + 1)?;
         let above_at = self.nodes.len() as u32;
-        self.node(above, above_cell, depth + 1)?;
+        self.node(above, na, above_cell, depth + 1)?;
         self.nodes[at] = KdNode::interior(axis, s, above_at);
         Ok(())
     }
 
-    fn leaf(&mut self, refs: &[Ref], depth: u32) -> Result<(), BuildError> {
-        if refs.len() as u64 > MAX_PAYLOAD as u64 || self.ids.len() + refs.len() > u32::MAX as usize
-        {
+    /// A leaf over the primitives whose start events are in `events` (one axis's list).
+    fn leaf(&mut self, events: &[Event], depth: u32) -> Result<(), BuildError> {
+        let count = events.len() / 2;
+        if count as u64 > MAX_PAYLOAD as u64 || self.ids.len() + count > u32::MAX as usize {
             return Err(too_big("primitive references"));
         }
         let first = self.ids.len() as u32;
         let start = self.ids.len();
-        self.ids.extend(refs.iter().map(|r| r.prim));
+        self.ids
+            .extend(events.iter().filter(|e| e.is_start()).map(Event::item));
         self.ids[start..].sort_unstable();
-        self.nodes.push(KdNode::leaf(first, refs.len() as u32));
+        self.nodes.push(KdNode::leaf(first, count as u32));
         self.leaves += 1;
-        self.empty_leaves += refs.is_empty() as usize;
+        self.empty_leaves += (count == 0) as usize;
         self.depth = self.depth.max(depth as usize + 1);
         Ok(())
     }
 
-    /// The cheapest plane `(axis, position)` strictly inside the cell, if cheaper than a leaf.
-    fn best_split(&mut self, refs: &[Ref], cell: &Aabb) -> Option<(usize, f32)> {
-        let w = Weights {
-            intersect: self.costs.intersect,
-            traversal: self.costs.traversal,
-            empty_bonus: self.costs.empty_bonus,
-        };
-        best_axis_split(
-            refs.len(),
-            |i| refs[i].b,
-            cell,
-            self.pad,
-            &w,
-            &mut self.events,
-        )
-        .map(|(axis, s, _)| (axis, s))
-    }
-
-    /// Sends each reference to the side(s) it touches (within `pad`); references on both sides
-    /// are clipped again to each child's cell.
-    fn classify(
-        &self,
-        refs: Vec<Ref>,
+    /// Splits the node's events at `s` on `axis` into the children's sorted event lists and
+    /// primitive counts `((below, n_below), (above, n_above))`.
+    ///
+    /// A primitive goes below only when its end is at or before `s`, above only when its start
+    /// is at or after `s` (and its end after `s`), else to both sides (the sweep's counts).
+    fn partition(
+        &mut self,
+        events: Events,
         axis: usize,
         s: f32,
         below_cell: &Aabb,
         above_cell: &Aabb,
-    ) -> (Vec<Ref>, Vec<Ref>) {
-        let (mut below, mut above) = (Vec::new(), Vec::new());
-        let grow = |c: &Aabb| {
-            Aabb::new(
-                c.min - Vec3A::splat(self.pad),
-                c.max + Vec3A::splat(self.pad),
-            )
-        };
-        let (below_clip, above_clip) = (grow(below_cell), grow(above_cell));
-        for r in refs {
-            let to_above = r.b.max[axis] + self.pad > s;
-            let to_below = r.b.min[axis] - self.pad < s || !to_above;
-            if to_below && to_above {
-                if let Some(b) = self.clip(r.prim, &below_clip) {
-                    below.push(Ref { prim: r.prim, b });
-                }
-                if let Some(b) = self.clip(r.prim, &above_clip) {
-                    above.push(Ref { prim: r.prim, b });
-                }
-            } else if to_below {
-                below.push(r);
-            } else {
-                above.push(r);
+    ) -> ((Events, usize), (Events, usize)) {
+        let chosen = &events[axis];
+        for e in chosen.iter().filter(|e| e.is_start()) {
+            self.side[e.item() as usize] = if e.pos >= s { Side::Above } else { Side::Both };
+        }
+        for e in chosen.iter().filter(|e| !e.is_start() && e.pos <= s) {
+            self.side[e.item() as usize] = Side::Below;
+        }
+        let mut straddling = std::mem::take(&mut self.straddling);
+        straddling.clear();
+        let mut counts = [0usize; 2];
+        for e in chosen.iter().filter(|e| e.is_start()) {
+            match self.side[e.item() as usize] {
+                Side::Below => counts[0] += 1,
+                Side::Above => counts[1] += 1,
+                Side::Both => straddling.push(e.item()),
             }
         }
-        (below, above)
+        // Events of one-sided primitives, filtered in order (still sorted).
+        let k = straddling.len();
+        let mut below: Events = std::array::from_fn(|_| self.take(2 * (counts[0] + k)));
+        let mut above: Events = std::array::from_fn(|_| self.take(2 * (counts[1] + k)));
+        for (a, list) in events.iter().enumerate() {
+            for e in list {
+                match self.side[e.item() as usize] {
+                    Side::Below => below[a].push(*e),
+                    Side::Above => above[a].push(*e),
+                    Side::Both => {}
+                }
+            }
+        }
+        self.pool.extend(events);
+        // Primitives on both sides: clipped to each child's cell, new events sorted and merged.
+        let mut fresh: Events = std::array::from_fn(|_| self.take(2 * k));
+        let pad = Vec3A::splat(self.pad);
+        let grow = |c: &Aabb| Aabb::new(c.min - pad, c.max + pad);
+        for (side, (cell, out)) in [
+            (grow(below_cell), &mut below),
+            (grow(above_cell), &mut above),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            fresh.iter_mut().for_each(Vec::clear);
+            for &prim in &straddling {
+                if let Some(b) = self.clip(prim, &cell) {
+                    push_events(&mut fresh, &b, self.pad, prim);
+                    counts[side] += 1;
+                }
+            }
+            for (list, new) in out.iter_mut().zip(&mut fresh) {
+                new.sort_unstable_by(Event::order);
+                merge_into(list, new);
+            }
+        }
+        self.pool.extend(fresh);
+        self.straddling = straddling;
+        ((below, counts[0]), (above, counts[1]))
+    }
+
+    /// An empty event list with room for `cap` events, from the pool when it has one.
+    fn take(&mut self, cap: usize) -> Vec<Event> {
+        let mut v = self.pool.pop().unwrap_or_default();
+        v.clear();
+        v.reserve(cap);
+        v
     }
 
     /// Conservative bounds of the primitive's part in `cell`, or `None` when it does not even
@@ -208,10 +271,195 @@ impl<G: Geometry> Builder<'_, G> {
     }
 }
 
+/// Merges the sorted `new` into the sorted `list` (both by [`Event::order`]), in place from the
+/// back: `O(len)` and no second buffer.
+fn merge_into(list: &mut Vec<Event>, new: &[Event]) {
+    if new.is_empty() {
+        return;
+    }
+    let old_len = list.len();
+    list.resize(old_len + new.len(), new[0]);
+    let (mut i, mut j, mut k) = (old_len, new.len(), list.len());
+    while j > 0 {
+        k -= 1;
+        if i > 0 && Event::order(&list[i - 1], &new[j - 1]).is_gt() {
+            list[k] = list[i - 1];
+            i -= 1;
+        } else {
+            list[k] = new[j - 1];
+            j -= 1;
+        }
+    }
+}
+
 /// The two children of `cell` split at `s` on `axis`.
 fn split_cell(cell: &Aabb, axis: usize, s: f32) -> (Aabb, Aabb) {
     let (mut below, mut above) = (*cell, *cell);
     below.max[axis] = s;
     above.min[axis] = s;
     (below, above)
+}
+
+#[cfg(test)]
+mod tests {
+    //! The event-list build against an oracle: the straightforward builder that sorts the
+    //! events of every node afresh (`O(N log^2 N)`), with the same classification and clipping.
+    use super::*;
+    use crate::geometry::triangle::Watertight;
+    use crate::index::kdtree::default_max_depth;
+    use crate::index::kdtree::sweep::best_axis_split;
+    use crate::index::near_far::{scene_bounds, scene_pad};
+    use crate::scene::{Triangles, generators};
+    use std::sync::Arc;
+
+    /// The oracle's tree: nodes and ids in the same layout as [`Built`].
+    struct Oracle<'a, G: Geometry> {
+        b: Builder<'a, G>,
+        scratch: Events,
+    }
+
+    impl<G: Geometry> Oracle<'_, G> {
+        fn node(&mut self, refs: Vec<(u32, Aabb)>, cell: Aabb, depth: u32) {
+            let at = self.b.nodes.len();
+            let c = self.b.costs;
+            let split = if refs.len() as u32 <= c.leaf_size || depth >= c.max_depth {
+                None
+            } else {
+                best_axis_split(
+                    refs.len(),
+                    |i| refs[i].1,
+                    &cell,
+                    self.b.pad,
+                    &c.weights(),
+                    &mut self.scratch,
+                )
+            };
+            let Some((axis, s, _)) = split else {
+                let mut ids: Vec<u32> = refs.iter().map(|r| r.0).collect();
+                ids.sort_unstable();
+                let first = self.b.ids.len() as u32;
+                self.b.ids.extend(&ids);
+                self.b.nodes.push(KdNode::leaf(first, ids.len() as u32));
+                self.b.leaves += 1;
+                self.b.empty_leaves += ids.is_empty() as usize;
+                self.b.depth = self.b.depth.max(depth as usize + 1);
+                return;
+            };
+            let (bc, ac) = split_cell(&cell, axis, s);
+            let pad = Vec3A::splat(self.b.pad);
+            let (bclip, aclip) = (
+                Aabb::new(bc.min - pad, bc.max + pad),
+                Aabb::new(ac.min - pad, ac.max + pad),
+            );
+            let (mut below, mut above) = (Vec::new(), Vec::new());
+            for (prim, b) in refs {
+                let to_above = b.max[axis] + self.b.pad > s;
+                let to_below = b.min[axis] - self.b.pad < s || !to_above;
+                if to_below && to_above {
+                    below.extend(self.b.clip(prim, &bclip).map(|b| (prim, b)));
+                    above.extend(self.b.clip(prim, &aclip).map(|b| (prim, b)));
+                } else if to_below {
+                    below.push((prim, b));
+                } else {
+                    above.push((prim, b));
+                }
+            }
+            self.b.nodes.push(KdNode::leaf(0, 0));
+            self.node(below, bc, depth + 1);
+            let above_at = self.b.nodes.len() as u32;
+            self.node(above, ac, depth + 1);
+            self.b.nodes[at] = KdNode::interior(axis, s, above_at);
+        }
+    }
+
+    fn costs(n: usize, intersect: f32, empty_bonus: f32, leaf_size: u32) -> Costs {
+        Costs {
+            intersect,
+            traversal: 1.0,
+            empty_bonus,
+            max_depth: default_max_depth(n),
+            leaf_size,
+        }
+    }
+
+    #[test]
+    fn event_lists_build_the_tree_of_a_sort_per_node() {
+        let mut splits = 0;
+        for (name, n, costs_of) in [
+            ("icosphere", 3000, (80.0, 0.2, 1)),
+            ("soup", 2000, (80.0, 0.2, 1)),
+            ("stadium", 3000, (80.0, 0.2, 1)),
+            ("slivers", 2000, (2.0, 0.0, 4)),
+            ("room", 2000, (80.0, 0.5, 1)),
+            ("flat", 1000, (80.0, 0.2, 1)),
+        ] {
+            let scene = generators::generate(name, n, 7).unwrap();
+            let geom = Triangles::<Watertight>::new(Arc::from(scene.triangles.as_slice()));
+            let root = scene_bounds(&geom, "kdtree").unwrap();
+            let pad = scene_pad(&root);
+            let c = costs(geom.len(), costs_of.0, costs_of.1, costs_of.2);
+            let built = build(&geom, root, pad, &c).unwrap();
+            let mut oracle = Oracle {
+                b: Builder {
+                    geom: &geom,
+                    costs: &c,
+                    pad,
+                    nodes: Vec::new(),
+                    ids: Vec::new(),
+                    side: Vec::new(),
+                    straddling: Vec::new(),
+                    pool: Vec::new(),
+                    depth: 0,
+                    leaves: 0,
+                    empty_leaves: 0,
+                },
+                scratch: Default::default(),
+            };
+            let refs = (0..geom.len() as u32)
+                .map(|p| (p, geom.bounds(p)))
+                .collect();
+            oracle.node(refs, root, 0);
+            let o = oracle.b;
+            assert_eq!(built.nodes, o.nodes, "{name}: nodes");
+            assert_eq!(built.ids, o.ids, "{name}: ids");
+            assert_eq!(
+                (built.depth, built.leaves, built.empty_leaves),
+                (o.depth, o.leaves, o.empty_leaves),
+                "{name}"
+            );
+            // Refs are duplicated, so re-clipping and merging were exercised.
+            assert!(built.ids.len() > geom.len(), "{name}: no straddlers");
+            splits += built.nodes.len() - built.leaves;
+        }
+        assert!(splits > 1000, "the trees split: {splits}");
+    }
+
+    #[test]
+    fn merge_keeps_the_sweep_order() {
+        let mut list = vec![
+            Event::end(0.0, 1),
+            Event::start(0.0, 2),
+            Event::start(2.0, 3),
+        ];
+        let new = [
+            Event::start(-1.0, 4),
+            Event::end(0.0, 6),
+            Event::start(0.0, 5),
+            Event::end(3.0, 7),
+        ];
+        merge_into(&mut list, &new);
+        let got: Vec<(f32, bool)> = list.iter().map(|e| (e.pos, e.is_start())).collect();
+        assert_eq!(
+            got,
+            [
+                (-1.0, true),
+                (0.0, false),
+                (0.0, false),
+                (0.0, true),
+                (0.0, true),
+                (2.0, true),
+                (3.0, false)
+            ]
+        );
+    }
 }

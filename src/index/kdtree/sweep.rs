@@ -1,7 +1,9 @@
-//! The SAH sweep over perfect-split candidates on the three axes, shared by the kd-tree and the
-//! axis planes of the general BSP.
+//! The SAH sweep over perfect-split candidates on the three axes, shared by the kd-tree (over
+//! event lists kept sorted from the root down, Wald & Havran 2006) and the axis planes of the
+//! general BSP (sorted per node).
 
 use crate::geometry::Aabb;
+use std::cmp::Ordering;
 
 /// SAH weights: cost of a primitive test, of a traversal step, and the fraction of the cost
 /// saved by a split that leaves one child empty.
@@ -12,26 +14,77 @@ pub(crate) struct Weights {
     pub empty_bonus: f32,
 }
 
-/// A bound of a reference projected on one axis.
+/// Largest item number an [`Event`] holds.
+pub(crate) const MAX_ITEM: u32 = (1 << 31) - 1;
+
+/// A bound of a reference projected on one axis: its position (the box face grown by the
+/// builder's `pad`), the item it belongs to (a primitive id or a reference's index, at most
+/// [`MAX_ITEM`]) and whether the reference starts or ends there.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Event {
-    pos: f32,
-    start: bool,
+    pub pos: f32,
+    /// `item << 1 | start`.
+    tag: u32,
+}
+
+impl Event {
+    #[inline]
+    pub fn start(pos: f32, item: u32) -> Event {
+        debug_assert!(item <= MAX_ITEM);
+        Event {
+            pos,
+            tag: (item << 1) | 1,
+        }
+    }
+
+    #[inline]
+    pub fn end(pos: f32, item: u32) -> Event {
+        debug_assert!(item <= MAX_ITEM);
+        Event {
+            pos,
+            tag: item << 1,
+        }
+    }
+
+    #[inline]
+    pub fn is_start(&self) -> bool {
+        self.tag & 1 != 0
+    }
+
+    #[inline]
+    pub fn item(&self) -> u32 {
+        self.tag >> 1
+    }
+
+    /// The sweep order: by position, ends before starts at equal positions (a reference that
+    /// ends at `s` is not above `s`; one that starts there is not below it). Planar references
+    /// do not occur: the padded bounds of a primitive have `start < end` or are one point.
+    #[inline]
+    pub fn order(a: &Event, b: &Event) -> Ordering {
+        a.pos.total_cmp(&b.pos).then((a.tag & 1).cmp(&(b.tag & 1)))
+    }
+}
+
+/// The two events of each axis of a reference with conservative box `b`, grown by `pad`.
+#[inline]
+pub(crate) fn push_events(events: &mut [Vec<Event>; 3], b: &Aabb, pad: f32, item: u32) {
+    for (axis, list) in events.iter_mut().enumerate() {
+        list.push(Event::start(b.min[axis] - pad, item));
+        list.push(Event::end(b.max[axis] + pad, item));
+    }
 }
 
 /// The cheapest axis plane `(axis, position, cost)` strictly inside `cell` for `n` references
-/// with conservative boxes `bounds(i)`, if cheaper than a leaf (`intersect * n`).
+/// whose events on each axis are `events[axis]`, sorted by [`Event::order`]; `None` unless
+/// cheaper than a leaf (`intersect * n`). Ties go to the lower axis, then the lower position.
 ///
-/// Candidates are the boxes' faces grown by `pad`; a reference counts below a plane `s` when
-/// `min - pad < s` and above when `max + pad > s`, the builders' classification. One sort of
-/// the events per axis, then one sweep: `O(n log n)` per node. `events` is scratch space.
-pub(crate) fn best_axis_split(
+/// A reference counts below a plane `s` when its start is before `s` and above when its end is
+/// after `s`, the builders' classification. One linear sweep per axis.
+pub(crate) fn best_split_sorted(
+    events: &[Vec<Event>; 3],
     n: usize,
-    bounds: impl Fn(usize) -> Aabb,
     cell: &Aabb,
-    pad: f32,
     w: &Weights,
-    events: &mut Vec<Event>,
 ) -> Option<(usize, f32, f32)> {
     let area = cell.surface_area();
     if area <= 0.0 || !area.is_finite() {
@@ -40,25 +93,12 @@ pub(crate) fn best_axis_split(
     let mut best: Option<(usize, f32, f32)> = None;
     let mut best_cost = w.intersect * n as f32;
     let e = cell.extent();
-    for axis in 0..3 {
+    for (axis, events) in events.iter().enumerate() {
         let (lo, hi) = (cell.min[axis], cell.max[axis]);
         if hi <= lo {
             continue;
         }
         let (e1, e2) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
-        events.clear();
-        for i in 0..n {
-            let b = bounds(i);
-            events.push(Event {
-                pos: b.min[axis] - pad,
-                start: true,
-            });
-            events.push(Event {
-                pos: b.max[axis] + pad,
-                start: false,
-            });
-        }
-        events.sort_unstable_by(|a, b| a.pos.total_cmp(&b.pos));
         // Sweep: below(s) = starts before s, above(s) = ends after s.
         let (mut n_below, mut n_above) = (0usize, n);
         let mut i = 0;
@@ -66,7 +106,7 @@ pub(crate) fn best_axis_split(
             let s = events[i].pos;
             let (mut starts, mut ends) = (0usize, 0usize);
             while i < events.len() && events[i].pos == s {
-                if events[i].start {
+                if events[i].is_start() {
                     starts += 1;
                 } else {
                     ends += 1;
@@ -96,4 +136,24 @@ pub(crate) fn best_axis_split(
         }
     }
     best
+}
+
+/// [`best_split_sorted`] for `n` references with conservative boxes `bounds(i)` (grown by
+/// `pad`), sorting their events first: `O(n log n)` per node. `events` is scratch space.
+pub(crate) fn best_axis_split(
+    n: usize,
+    bounds: impl Fn(usize) -> Aabb,
+    cell: &Aabb,
+    pad: f32,
+    w: &Weights,
+    events: &mut [Vec<Event>; 3],
+) -> Option<(usize, f32, f32)> {
+    events.iter_mut().for_each(Vec::clear);
+    for i in 0..n {
+        push_events(events, &bounds(i), pad, i as u32);
+    }
+    for list in events.iter_mut() {
+        list.sort_unstable_by(Event::order);
+    }
+    best_split_sorted(events, n, cell, w)
 }
