@@ -4,7 +4,7 @@
 use super::params::BINS;
 use super::prim_ref::PrimRef;
 use crate::geometry::Aabb;
-use glam::Vec3A;
+use glam::{BVec3A, Vec3A};
 
 /// Bin slots per axis: the largest accepted bin count, a power of two, so that masking a bin
 /// index (always below the bin count) with `SLOTS - 1` proves it in range without changing it.
@@ -230,27 +230,32 @@ pub fn split(
     })
 }
 
-/// Moves the elements for which `left` holds to the front, in place (swapping misplaced pairs
-/// from both ends); returns how many there are and the centroid bounds of each side.
+/// Moves the elements for which `left` holds to the front, in place; returns how many there are
+/// and the centroid bounds of each side.
+///
+/// Branch free (the side of each element is data dependent and unpredictable): every element
+/// is swapped with the first right-side one, which keeps `refs[..mid]` left and
+/// `refs[mid..=i]` right, and `mid` advances only past left ones.
 fn partition(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> (usize, Aabb, Aabb) {
     let (mut lc, mut rc) = (Aabb::EMPTY, Aabb::EMPTY);
-    // refs[..i] go left, refs[j..] right.
-    let (mut i, mut j) = (0, refs.len());
-    loop {
-        while i < j && left(&refs[i]) {
-            lc = lc.grown(refs[i].centroid());
-            i += 1;
-        }
-        while i < j && !left(&refs[j - 1]) {
-            rc = rc.grown(refs[j - 1].centroid());
-            j -= 1;
-        }
-        if i == j {
-            return (i, lc, rc);
-        }
-        // refs[i] goes right and refs[j - 1] left, with i < j - 1.
-        refs.swap(i, j - 1);
+    let mut mid = 0;
+    for i in 0..refs.len() {
+        let p = refs[i];
+        let c = p.centroid();
+        let is_left = left(&p);
+        let m = BVec3A::splat(is_left);
+        lc = Aabb::new(
+            Vec3A::select(m, lc.min.min(c), lc.min),
+            Vec3A::select(m, lc.max.max(c), lc.max),
+        );
+        rc = Aabb::new(
+            Vec3A::select(m, rc.min, rc.min.min(c)),
+            Vec3A::select(m, rc.max, rc.max.max(c)),
+        );
+        refs.swap(i, mid);
+        mid += is_left as usize;
     }
+    (mid, lc, rc)
 }
 
 #[cfg(test)]
