@@ -22,7 +22,7 @@ pub const MAX_DEPTH: u32 = 64;
 /// Subtrees with at least this many primitives build their two children in parallel.
 const PARALLEL_MIN: usize = 4096;
 
-/// The flattened result.
+/// The result: the final depth-first node array and the ids in leaf order.
 #[derive(Debug, Clone)]
 pub struct Built {
     /// The root's box and reference (a leaf when the whole scene is one).
