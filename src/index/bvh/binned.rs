@@ -1,22 +1,69 @@
 //! Binned SAH split (Wald 2007): centroids are binned into `bins` equal buckets per axis, and
 //! the `bins - 1` planes between buckets are scored by the surface area heuristic.
 
+use super::params::BINS;
 use super::prim_ref::PrimRef;
 use crate::geometry::Aabb;
-use glam::Vec3A;
+use glam::{BVec3A, Vec3A};
 
-#[derive(Clone, Copy)]
-struct Bin {
-    min: Vec3A,
-    max: Vec3A,
-    count: u32,
+/// Bin slots per axis: the largest accepted bin count, a power of two, so that masking a bin
+/// index (always below the bin count) with `SLOTS - 1` proves it in range without changing it.
+const SLOTS: usize = 64;
+const _: () = assert!(SLOTS == *BINS.end() as usize && SLOTS.is_power_of_two());
+
+/// Nodes with at least this many primitives bin into two sets (even and odd primitives), so
+/// that consecutive primitives landing in the same bin do not wait on each other; smaller
+/// nodes use one set (clearing and merging a second would cost more than it saves).
+const TWO_SETS_MIN: usize = 256;
+
+/// One set of bins on the three axes: bin `k` of axis `a` holds `count[a][k]` primitives whose
+/// bounds' union is `min[a][k]..max[a][k]`. Only the first `bins` slots of each axis are used.
+#[derive(Clone)]
+struct BinSet {
+    min: [[Vec3A; SLOTS]; 3],
+    max: [[Vec3A; SLOTS]; 3],
+    count: [[u32; SLOTS]; 3],
 }
 
-const EMPTY_BIN: Bin = Bin {
-    min: Vec3A::INFINITY,
-    max: Vec3A::NEG_INFINITY,
-    count: 0,
-};
+impl BinSet {
+    const EMPTY: BinSet = BinSet {
+        min: [[Vec3A::INFINITY; SLOTS]; 3],
+        max: [[Vec3A::NEG_INFINITY; SLOTS]; 3],
+        count: [[0; SLOTS]; 3],
+    };
+
+    /// Empties the first `bins` (at most [`SLOTS`]) bins of every axis.
+    fn clear(&mut self, bins: usize) {
+        for a in 0..3 {
+            self.min[a][..bins].fill(Vec3A::INFINITY);
+            self.max[a][..bins].fill(Vec3A::NEG_INFINITY);
+            self.count[a][..bins].fill(0);
+        }
+    }
+
+    /// Adds `r` to bin `k[a]` of each axis `a` (every `k[a]` below the bin count).
+    #[inline(always)]
+    fn add(&mut self, k: [usize; 3], r: &PrimRef) {
+        let (lo, hi) = (r.min(), r.max());
+        for (a, k) in k.into_iter().enumerate() {
+            let k = k & (SLOTS - 1);
+            self.count[a][k] += 1;
+            self.min[a][k] = self.min[a][k].min(lo);
+            self.max[a][k] = self.max[a][k].max(hi);
+        }
+    }
+
+    /// Adds `o`'s first `bins` bins into this set's.
+    fn merge(&mut self, o: &BinSet, bins: usize) {
+        for a in 0..3 {
+            for k in 0..bins {
+                self.count[a][k] += o.count[a][k];
+                self.min[a][k] = self.min[a][k].min(o.min[a][k]);
+                self.max[a][k] = self.max[a][k].max(o.max[a][k]);
+            }
+        }
+    }
+}
 
 /// Surface area of a non-empty box given by its corners (no emptiness check: callers only
 /// score sides that hold primitives).
@@ -26,14 +73,20 @@ fn area(min: Vec3A, max: Vec3A) -> f32 {
     2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
 }
 
-/// Buckets of a centroid on the three axes (the same function bins and partitions, so the
-/// partition matches the counts the cost was computed from). `scale` is finite and 0 on axes
-/// without extent (everything in bucket 0); `last` is `bins - 1` on every lane.
+/// Scaled centroid offsets `(c - min) * scale`: truncated (and clamped to the last bin) they
+/// are the centroid's bins on the three axes. The same function bins and partitions, so the
+/// partition matches the counts the cost was computed from. `scale` is finite and 0 on axes
+/// without extent (everything in bin 0).
+#[inline(always)]
+fn offsets(c: Vec3A, min: Vec3A, scale: Vec3A) -> Vec3A {
+    (c - min) * scale
+}
+
+/// Bins of a centroid on the three axes, in `[0, bins - 1]`; `last` is `bins - 1` on every lane.
 #[inline(always)]
 fn bins_of(c: Vec3A, min: Vec3A, scale: Vec3A, last: Vec3A) -> [usize; 3] {
     // In [0, bins - 1]: c >= min, and the product is at most bins (times 1 + eps).
-    let v = ((c - min) * scale).min(last);
-    truncate(v)
+    truncate(offsets(c, min, scale).min(last))
 }
 
 /// Truncates three non-negative lanes below 2^31 to integers (one SSE2 conversion: `as usize`
@@ -59,11 +112,22 @@ fn truncate(v: Vec3A) -> [usize; 3] {
     [v.x as usize, v.y as usize, v.z as usize]
 }
 
-/// Reusable bin storage, so that no node allocates (one per build thread).
-#[derive(Default)]
+/// Reusable bin storage, so that no node allocates or clears more bins than it uses (one per
+/// build thread).
 pub struct Scratch {
-    grid: Vec<Bin>,
-    right_cost: Vec<f32>,
+    /// Even and odd primitives' bins (the second used only from [`TWO_SETS_MIN`] primitives).
+    sets: Box<[BinSet; 2]>,
+    /// Per plane `k` of the axis being swept: SAH term `area * count` and box of bins `k..`.
+    right: Box<[(f32, Aabb); SLOTS]>,
+}
+
+impl Default for Scratch {
+    fn default() -> Scratch {
+        Scratch {
+            sets: Box::new([BinSet::EMPTY, BinSet::EMPTY]),
+            right: Box::new([(0.0, Aabb::EMPTY); SLOTS]),
+        }
+    }
 }
 
 /// A chosen split: `refs[..mid]` go left, `refs[mid..]` right (both non-empty), with
@@ -80,13 +144,15 @@ pub struct Split {
 ///
 /// `None` when the centroids coincide on every axis (no plane separates them). `centroids` is
 /// the bounds of the centroids of `refs`; `bins` is in `2..=`[`super::params::BINS`]`.end()`.
+/// The chosen plane depends only on the set of primitives, not on their order.
 pub fn split(
     refs: &mut [PrimRef],
     centroids: &Aabb,
     bins: u32,
     scratch: &mut Scratch,
 ) -> Option<Split> {
-    let bins = bins as usize;
+    debug_assert!(BINS.contains(&bins));
+    let bins = (bins as usize).min(SLOTS);
     let ext = centroids.extent();
     if refs.len() < 2 || ext.max_element() <= 0.0 {
         return None;
@@ -99,102 +165,97 @@ pub fn split(
     );
     let last = Vec3A::splat((bins - 1) as f32);
     let min = centroids.min;
-    // Two sets of bins, for even and odd primitives, so that consecutive primitives landing in
-    // the same bin do not wait on each other; merged afterwards. Bins of axis `a` in set `s`
-    // are `grid[(2 * a + s) * bins..][..bins]`.
-    let grid = &mut scratch.grid;
-    grid.clear();
-    grid.resize(6 * bins, EMPTY_BIN);
-    let mut add = |set: usize, r: &PrimRef| {
-        let k = bins_of(r.centroid(), min, scale, last);
-        for (a, k) in k.into_iter().enumerate() {
-            let b = &mut grid[(2 * a + set) * bins + k];
-            b.count += 1;
-            b.min = b.min.min(r.min());
-            b.max = b.max.max(r.max());
+    let key = |r: &PrimRef| bins_of(r.centroid(), min, scale, last);
+    let [set, odd] = &mut *scratch.sets;
+    set.clear(bins);
+    if refs.len() >= TWO_SETS_MIN {
+        odd.clear(bins);
+        let mut pairs = refs.chunks_exact(2);
+        for p in &mut pairs {
+            set.add(key(&p[0]), &p[0]);
+            odd.add(key(&p[1]), &p[1]);
         }
-    };
-    let mut pairs = refs.chunks_exact(2);
-    for p in &mut pairs {
-        add(0, &p[0]);
-        add(1, &p[1]);
-    }
-    if let [r] = pairs.remainder() {
-        add(0, r);
-    }
-    for a in 0..3 {
-        let (even, odd) = grid[2 * a * bins..(2 * a + 2) * bins].split_at_mut(bins);
-        for (e, o) in even.iter_mut().zip(odd.iter()) {
-            e.count += o.count;
-            e.min = e.min.min(o.min);
-            e.max = e.max.max(o.max);
+        if let [r] = pairs.remainder() {
+            set.add(key(r), r);
+        }
+        set.merge(odd, bins);
+    } else {
+        for r in refs.iter() {
+            set.add(key(r), r);
         }
     }
     let n = refs.len() as u32;
-    let mut best: Option<(f32, usize, usize)> = None;
-    let right_cost = &mut scratch.right_cost;
-    right_cost.clear();
-    right_cost.resize(bins, 0.0);
+    // (cost, axis, plane, left box, right box)
+    let mut best: Option<(f32, usize, usize, Aabb, Aabb)> = None;
+    let right = &mut *scratch.right;
     for a in (0..3).filter(|&a| ext[a] > 0.0) {
-        let bin = &grid[2 * a * bins..][..bins];
-        // right_cost[k]: area * count of bins k..bins (0 while they are empty).
-        let (mut lo, mut hi, mut count) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0u32);
+        let (lo, hi, count) = (&set.min[a], &set.max[a], &set.count[a]);
+        // right[k]: SAH term (0 while empty) and box of bins k..bins.
+        let (mut acc, mut c) = (Aabb::EMPTY, 0u32);
         for k in (1..bins).rev() {
-            lo = lo.min(bin[k].min);
-            hi = hi.max(bin[k].max);
-            count += bin[k].count;
-            right_cost[k] = if count > 0 {
-                area(lo, hi) * count as f32
-            } else {
-                0.0
-            };
+            acc = Aabb::new(acc.min.min(lo[k]), acc.max.max(hi[k]));
+            c += count[k];
+            right[k] = (
+                if c > 0 {
+                    area(acc.min, acc.max) * c as f32
+                } else {
+                    0.0
+                },
+                acc,
+            );
         }
-        let (mut lo, mut hi, mut count) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0u32);
+        let (mut acc, mut c) = (Aabb::EMPTY, 0u32);
         for k in 1..bins {
-            lo = lo.min(bin[k - 1].min);
-            hi = hi.max(bin[k - 1].max);
-            count += bin[k - 1].count;
-            if count == 0 || count == n {
+            acc = Aabb::new(acc.min.min(lo[k - 1]), acc.max.max(hi[k - 1]));
+            c += count[k - 1];
+            if c == 0 || c == n {
                 continue;
             }
-            let cost = area(lo, hi) * count as f32 + right_cost[k];
-            if best.is_none_or(|(c, ..)| cost < c) {
-                best = Some((cost, a, k));
+            let cost = area(acc.min, acc.max) * c as f32 + right[k].0;
+            if best.is_none_or(|(b, ..)| cost < b) {
+                best = Some((cost, a, k, acc, right[k].1));
             }
         }
     }
-    let (cost, a, plane) = best?;
-    let (mid, left, right) =
-        partition(refs, |r| bins_of(r.centroid(), min, scale, last)[a] < plane);
+    let (cost, a, plane, left, right) = best?;
+    let plane = plane as f32;
+    // The bin is below `plane` exactly when the unclamped offset is (plane <= bins - 1).
+    let (mid, lc, rc) = partition(refs, |r| offsets(r.centroid(), min, scale)[a] < plane);
     debug_assert!(mid > 0 && mid < refs.len());
     Some(Split {
         cost,
         mid,
-        left,
-        right,
+        left: (left, lc),
+        right: (right, rc),
     })
 }
 
-/// Moves the elements for which `left` holds to the front; returns how many there are and the
-/// (bounds, centroid bounds) of each side.
-fn partition(
-    refs: &mut [PrimRef],
-    left: impl Fn(&PrimRef) -> bool,
-) -> (usize, (Aabb, Aabb), (Aabb, Aabb)) {
-    let mut l = (Aabb::EMPTY, Aabb::EMPTY);
-    let mut r = (Aabb::EMPTY, Aabb::EMPTY);
+/// Moves the elements for which `left` holds to the front, in place; returns how many there are
+/// and the centroid bounds of each side.
+///
+/// Branch free (the side of each element is data dependent and unpredictable): every element
+/// is swapped with the first right-side one, which keeps `refs[..mid]` left and
+/// `refs[mid..=i]` right, and `mid` advances only past left ones.
+fn partition(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> (usize, Aabb, Aabb) {
+    let (mut lc, mut rc) = (Aabb::EMPTY, Aabb::EMPTY);
     let mut mid = 0;
     for i in 0..refs.len() {
         let p = refs[i];
-        if left(&p) {
-            l = (l.0.union(p.bounds()), l.1.grown(p.centroid()));
-            refs.swap(i, mid);
-            mid += 1;
-        } else {
-            r = (r.0.union(p.bounds()), r.1.grown(p.centroid()));
-        }
+        let c = p.centroid();
+        let is_left = left(&p);
+        let m = BVec3A::splat(is_left);
+        lc = Aabb::new(
+            Vec3A::select(m, lc.min.min(c), lc.min),
+            Vec3A::select(m, lc.max.max(c), lc.max),
+        );
+        rc = Aabb::new(
+            Vec3A::select(m, rc.min, rc.min.min(c)),
+            Vec3A::select(m, rc.max, rc.max.max(c)),
+        );
+        refs.swap(i, mid);
+        mid += is_left as usize;
     }
-    (mid, l, r)
+    (mid, lc, rc)
 }
 
 #[cfg(test)]

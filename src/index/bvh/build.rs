@@ -1,9 +1,12 @@
-//! Top-down SAH build into a pointer tree, then flattened depth-first into [`Node`]s (leaves
-//! live in their parents' child references).
+//! Top-down SAH build straight into the final depth-first [`Node`] array (leaves live in their
+//! parents' child references): a node's slot is taken before its children are built, and its
+//! children's boxes come from the split, so no intermediate tree exists.
 //!
 //! The builder sees only [`PrimRef`]s (bounds, centroid, id). Large subtrees build in parallel
-//! with `rayon::join` when the current pool has more than one thread; the tree is the same
-//! either way (every decision depends only on the primitives of the subtree).
+//! with `rayon::join` when the current pool has more than one thread: the second child's
+//! subtree goes into its own node array, appended after the first child's with its inner
+//! indices shifted, so the result is the same either way (every decision depends only on the
+//! primitives of the subtree).
 
 use super::binned::{self, Scratch};
 use super::node::{Child, Node};
@@ -19,7 +22,7 @@ pub const MAX_DEPTH: u32 = 64;
 /// Subtrees with at least this many primitives build their two children in parallel.
 const PARALLEL_MIN: usize = 4096;
 
-/// The flattened result.
+/// The result: the final depth-first node array and the ids in leaf order.
 #[derive(Debug, Clone)]
 pub struct Built {
     /// The root's box and reference (a leaf when the whole scene is one).
@@ -34,64 +37,104 @@ pub struct Built {
     pub depth: u32,
 }
 
-enum Tree {
-    Leaf {
-        bounds: Aabb,
-        first: u32,
-        count: u32,
-    },
-    Inner {
-        bounds: Aabb,
-        children: Box<[Tree; 2]>,
-    },
+/// The inner nodes of a subtree under construction, depth first, indexed from 0 at the start
+/// of `nodes`, with its leaf count and deepest leaf level.
+struct Out {
+    nodes: Vec<Node>,
+    leaves: usize,
+    depth: u32,
+}
+
+impl Out {
+    fn with_capacity(nodes: usize) -> Out {
+        Out {
+            nodes: Vec::with_capacity(nodes),
+            leaves: 0,
+            depth: 0,
+        }
+    }
+
+    /// Records a leaf over `prim_ids[first..first + count]` at `level`.
+    fn leaf(&mut self, first: u32, count: usize, level: u32) -> Child {
+        self.leaves += 1;
+        self.depth = self.depth.max(level);
+        Child::leaf(first, count as u32)
+    }
+
+    /// Appends `other`'s nodes (shifting its inner references by where they land) and returns
+    /// `root`, a reference into `other`, as a reference into `self`.
+    fn append(&mut self, other: Out, root: Child) -> Child {
+        let offset = self.nodes.len() as u32;
+        let shift = move |c: Child| {
+            if c.is_leaf() {
+                c
+            } else {
+                Child::inner(c.index + offset)
+            }
+        };
+        self.nodes.extend(other.nodes.into_iter().map(|mut n| {
+            n.children = n.children.map(shift);
+            n
+        }));
+        self.leaves += other.leaves;
+        self.depth = self.depth.max(other.depth);
+        shift(root)
+    }
+}
+
+/// Settings shared by every node of one build.
+struct Ctx<'a> {
+    cfg: &'a BuildConfig,
+    /// Whether large subtrees build their children with `rayon::join`.
+    parallel: bool,
 }
 
 /// Builds the tree over `refs` (non-empty; reordered into leaf order).
 pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
     assert!(!refs.is_empty(), "the caller rejects empty scenes");
-    let parallel = rayon::current_num_threads() > 1;
+    let ctx = Ctx {
+        cfg,
+        parallel: rayon::current_num_threads() > 1,
+    };
     let boxes = bounds_and_centroids(&refs);
-    let tree = subtree(
+    // A binary tree over n primitives has at most n - 1 inner nodes.
+    let mut out = Out::with_capacity(refs.len() - 1);
+    let root = subtree(
         &mut refs,
         boxes,
         0,
         1,
-        cfg,
-        parallel,
+        &ctx,
+        &mut out,
         &mut Scratch::default(),
     );
-    let mut out = Built {
-        root_bounds: tree.bounds(),
-        root: Child::default(),
-        nodes: Vec::with_capacity(refs.len()),
+    Built {
+        root_bounds: boxes.0,
+        root,
+        nodes: out.nodes,
         prim_ids: refs.iter().map(|r| r.id()).collect(),
-        leaves: 0,
-        depth: 0,
-    };
-    out.root = flatten(tree, 1, &mut out);
-    out
+        leaves: out.leaves,
+        depth: out.depth,
+    }
 }
 
-/// Builds the subtree over `refs`, whose bounds and centroid bounds are `boxes`; its primitives
-/// start at slot `first`; `level` counts from 1 at the root.
+/// Builds the subtree over `refs`, whose bounds and centroid bounds are `boxes`, appending its
+/// inner nodes to `out` depth first; its primitives start at slot `first`; `level` counts from
+/// 1 at the root. Returns the reference to the subtree.
 fn subtree(
     refs: &mut [PrimRef],
     boxes: (Aabb, Aabb),
     first: u32,
     level: u32,
-    cfg: &BuildConfig,
-    par: bool,
+    ctx: &Ctx,
+    out: &mut Out,
     scratch: &mut Scratch,
-) -> Tree {
+) -> Child {
     let n = refs.len();
+    let cfg = ctx.cfg;
     let (bounds, centroids) = boxes;
-    let leaf = Tree::Leaf {
-        bounds,
-        first,
-        count: n as u32,
-    };
     if n == 1 || level == MAX_DEPTH {
-        return leaf;
+        return out.leaf(first, n, level);
     }
     // (cost, mid, child boxes if the splitter computed them)
     let split = match cfg.split {
@@ -110,72 +153,36 @@ fn subtree(
             let area = bounds.surface_area();
             let expected = if area > 0.0 { cost / area } else { 0.0 };
             if small && n as f32 <= cfg.cost_ratio + expected {
-                return leaf;
+                return out.leaf(first, n, level);
             }
             (mid, children)
         }
         // Coincident centroids: no plane separates them; halve by count if too many.
-        None if small => return leaf,
+        None if small => return out.leaf(first, n, level),
         None => (n / 2, None),
     };
     let (l, r) = refs.split_at_mut(mid);
     let (lb, rb) = children.unwrap_or_else(|| (bounds_and_centroids(l), bounds_and_centroids(r)));
     let right_first = first + mid as u32;
-    let (a, b) = if par && n >= PARALLEL_MIN {
-        rayon::join(
-            || subtree(l, lb, first, level + 1, cfg, par, scratch),
+    let at = out.nodes.len();
+    out.nodes
+        .push(Node::new([lb.0, rb.0], [Child::default(); 2]));
+    let children = if ctx.parallel && n >= PARALLEL_MIN {
+        let mut right = Out::with_capacity(r.len() - 1);
+        let (a, b) = rayon::join(
+            || subtree(l, lb, first, level + 1, ctx, out, scratch),
             || {
-                subtree(
-                    r,
-                    rb,
-                    right_first,
-                    level + 1,
-                    cfg,
-                    par,
-                    &mut Scratch::default(),
-                )
+                let mut scratch = Scratch::default();
+                subtree(r, rb, right_first, level + 1, ctx, &mut right, &mut scratch)
             },
-        )
+        );
+        [a, out.append(right, b)]
     } else {
-        (
-            subtree(l, lb, first, level + 1, cfg, par, scratch),
-            subtree(r, rb, right_first, level + 1, cfg, par, scratch),
-        )
+        let a = subtree(l, lb, first, level + 1, ctx, out, scratch);
+        [a, subtree(r, rb, right_first, level + 1, ctx, out, scratch)]
     };
-    Tree::Inner {
-        bounds,
-        children: Box::new([a, b]),
-    }
-}
-
-impl Tree {
-    fn bounds(&self) -> Aabb {
-        match self {
-            Tree::Leaf { bounds, .. } | Tree::Inner { bounds, .. } => *bounds,
-        }
-    }
-}
-
-/// Appends `tree`'s inner nodes depth-first (a node, then its first child's subtree, then its
-/// second child's) and returns the reference to it; `level` is its level (root = 1).
-fn flatten(tree: Tree, level: u32, out: &mut Built) -> Child {
-    out.depth = out.depth.max(level);
-    match tree {
-        Tree::Leaf { first, count, .. } => {
-            out.leaves += 1;
-            Child::leaf(first, count)
-        }
-        Tree::Inner { children, .. } => {
-            let at = out.nodes.len();
-            let [a, b] = *children;
-            let boxes = [a.bounds(), b.bounds()];
-            out.nodes.push(Node::new(boxes, [Child::default(); 2]));
-            let a = flatten(a, level + 1, out);
-            let b = flatten(b, level + 1, out);
-            out.nodes[at].children = [a, b];
-            Child::inner(at as u32)
-        }
-    }
+    out.nodes[at].children = children;
+    Child::inner(at as u32)
 }
 
 #[cfg(test)]

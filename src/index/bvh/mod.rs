@@ -2,7 +2,7 @@
 //! inner nodes holding both children's boxes, front-to-back closest-hit traversal with early
 //! termination, and any-hit.
 //!
-//! - [`params`]: presets and overrides; `build`: the builder and flattening, with the SAH
+//! - [`params`]: presets and overrides; `build`: the builder (straight into the node array), with the SAH
 //!   split finders in `binned` and `sweep`; `node`: the node layout; `slab`: the two-box slab
 //!   test; `traverse`: the queries.
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
