@@ -204,6 +204,11 @@ fn xy_chart(
     } else {
         padded(y_lo.min(0.0), y_hi)
     };
+    let mut x_range = padded(x_lo, x_hi);
+    if series.iter().any(|s| !s.labels.is_empty()) {
+        // Room for the labels, which are written to the right of their points.
+        x_range.end += (x_range.end - x_range.start) * 0.12;
+    }
     let root = create_root(path)?;
     let e = |e| write_err(path, e);
     let mut c = ChartBuilder::on(&root)
@@ -211,7 +216,7 @@ fn xy_chart(
         .margin(14)
         .x_label_area_size(46)
         .y_label_area_size(72)
-        .build_cartesian_2d(padded(x_lo, x_hi), y_range.clone())
+        .build_cartesian_2d(x_range, y_range.clone())
         .map_err(e)?;
     let (lx, ly) = (chart.log_x, chart.log_y);
     let fx = move |v: &f64| tick_label(*v, lx);
