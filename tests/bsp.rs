@@ -69,11 +69,6 @@ fn rays_in_general_planes(planes: &[(Vec3A, f32)], scene: &Scene, per_plane: usi
 }
 
 #[test]
-fn agrees_with_brute_force_everywhere() {
-    common::assert_agrees_everywhere("bsp", 1500);
-}
-
-#[test]
 fn agrees_with_other_parameters() {
     let scene = generators::generate("stadium", 3000, 3).unwrap();
     let rays = common::agreement_rays(&scene, 1500);
@@ -178,19 +173,6 @@ fn bad_parameters_are_typed_errors() {
         assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
         assert!(err.to_string().contains(says), "{spec}: {err}");
     }
-}
-
-/// The bunny: agreement on the protocol sets (small); prints the build time (`--nocapture`).
-#[test]
-fn bunny_agrees_and_reports_build_time() {
-    let Some(bunny) = common::bunny() else {
-        eprintln!("bunny not found, skipped");
-        return;
-    };
-    let start = std::time::Instant::now();
-    let tree = bsp_on(&bunny, "");
-    eprintln!("bsp bunny build: {:?}, {:?}", start.elapsed(), tree.info());
-    common::assert_agrees("bsp", &bunny, &common::agreement_rays(&bunny, 2000));
 }
 
 /// Scored by the exact areas of the convex cells, the primitives' own planes win some splits

@@ -74,11 +74,6 @@ fn every_preset_agrees_on_the_agreement_scenes() {
 }
 
 #[test]
-fn default_bvh_agrees_through_the_shared_kit() {
-    common::assert_agrees_everywhere("bvh", 1000);
-}
-
-#[test]
 fn every_preset_agrees_on_the_bunny() {
     let Some(bunny) = common::bunny() else {
         eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");

@@ -21,11 +21,6 @@ fn kdtree_on(scene: &Scene, params: &str) -> KdTree {
 }
 
 #[test]
-fn agrees_with_brute_force_everywhere() {
-    common::assert_agrees_everywhere("kdtree", 1500);
-}
-
-#[test]
 fn agrees_with_other_parameters() {
     let scene = generators::generate("stadium", 3000, 3).unwrap();
     let rays = common::agreement_rays(&scene, 1500);
@@ -115,21 +110,4 @@ fn bad_parameters_are_typed_errors() {
         assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
         assert!(err.to_string().contains(says), "{spec}: {err}");
     }
-}
-
-/// The bunny: agreement on the protocol sets (small); prints the build time (`--nocapture`).
-#[test]
-fn bunny_agrees_and_reports_build_time() {
-    let Some(bunny) = common::bunny() else {
-        eprintln!("bunny not found, skipped");
-        return;
-    };
-    let start = std::time::Instant::now();
-    let tree = kdtree_on(&bunny, "");
-    eprintln!(
-        "kdtree bunny build: {:?}, {:?}",
-        start.elapsed(),
-        tree.info()
-    );
-    common::assert_agrees("kdtree", &bunny, &common::agreement_rays(&bunny, 2000));
 }

@@ -8,12 +8,10 @@ mod common;
 
 use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;
-use accelbench::index::{IndexSpec, TraceIndex, build_index};
+use accelbench::index::{IndexSpec, TraceIndex, build_index, peer_names};
 use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::Scene;
 use common::{agreement_rays, agreement_scenes};
-
-use accelbench::index::PEERS;
 
 fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
     let spec: IndexSpec = spec.parse().unwrap();
@@ -69,7 +67,7 @@ fn peers_agree_on_bunny_protocol_rays() {
     let mut rays = primary_rays(&b, 48, 48).unwrap();
     rays.extend(incoherent_rays(&b, 2000, 42));
     let expected = closest(build("brute", &bunny).as_ref(), &rays);
-    for spec in PEERS {
+    for spec in peer_names() {
         let index = build(spec, &bunny);
         let m = compare_closest(&rays, &expected, &closest(index.as_ref(), &rays));
         assert!(
@@ -89,7 +87,7 @@ fn peer_mismatches_on_agreement_scenes_are_of_documented_kinds() {
     for scene in agreement_scenes() {
         let rays = agreement_rays(&scene, 2000);
         let expected = closest(build("brute", &scene).as_ref(), &rays);
-        for spec in PEERS {
+        for spec in peer_names() {
             let got = closest(build(spec, &scene).as_ref(), &rays);
             let m = compare_closest(&rays, &expected, &got);
             let mut counts = std::collections::BTreeMap::new();

@@ -6,13 +6,12 @@
 //!
 //! The default is 32 cases so CI stays fast; run many more locally with
 //! `PROPTEST_CASES=10000 cargo test --release --test proptest_indices`.
-//! Peers (`accelbench::stress::PEERS`) are reported, not asserted.
+//! Peers (`accelbench::index::is_peer`) are reported, not asserted.
 
 use accelbench::geometry::{Ray, Sphere, Triangle, TriangleKernelKind};
 use accelbench::harness::verify::verify_against_brute;
-use accelbench::index::{IndexSpec, index_names};
+use accelbench::index::{IndexSpec, index_names, is_peer};
 use accelbench::scene::SceneGeometry;
-use accelbench::stress::PEERS;
 use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
 use std::sync::Arc;
@@ -159,7 +158,7 @@ proptest! {
                 &rays,
             )
             .map_err(|e| TestCaseError::fail(format!("{name} ({kernel}): {e}")))?;
-            if PEERS.contains(&name) {
+            if is_peer(name) {
                 if !m.is_empty() {
                     eprintln!("peer {name}: {} of {} rays mismatch", m.len(), rays.len());
                 }

@@ -5,7 +5,7 @@
 mod common;
 
 use accelbench::geometry::{Ray, Shape};
-use accelbench::index::{PEERS, index_names};
+use accelbench::index::{index_names, is_peer};
 use accelbench::scene::{Scene, generators};
 use glam::{Vec3, Vec3A};
 
@@ -65,9 +65,9 @@ fn every_index_agrees_with_brute_force_on_all_primitive_kinds() {
         let kinds: std::collections::BTreeSet<_> = scene.shapes.iter().map(Shape::kind).collect();
         assert_eq!(kinds.len(), 6, "{kinds:?}");
         let rays = shape_rays(scene, 1500);
-        // Our indices must agree; the obvhs peers (index::PEERS) lose some hits by design of
+        // Our indices must agree; the obvhs peers (index::is_peer) lose some hits by design of
         // their own box tests and are checked in tests/obvhs_peer.rs.
-        for name in index_names().into_iter().filter(|n| !PEERS.contains(n)) {
+        for name in index_names().into_iter().filter(|n| !is_peer(n)) {
             common::assert_agrees(name, scene, &rays);
         }
     }
@@ -240,7 +240,7 @@ fn shapes_scene_renders_identically_through_every_index() {
         height: 40,
     };
     let mut first = None;
-    for name in index_names().into_iter().filter(|n| !PEERS.contains(n)) {
+    for name in index_names().into_iter().filter(|n| !is_peer(n)) {
         let index = build_index(
             &IndexSpec::named(name),
             &scene.geometry(),

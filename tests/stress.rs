@@ -4,8 +4,8 @@
 use accelbench::accuracy::WatertightConfig;
 use accelbench::accuracy::watertight;
 use accelbench::geometry::TriangleKernelKind;
-use accelbench::index::index_names;
-use accelbench::stress::{self, PEERS, StressConfig, self_intersection};
+use accelbench::index::{index_names, is_peer, peer_names};
+use accelbench::stress::{self, StressConfig, self_intersection};
 use std::process::Command;
 use std::time::Duration;
 
@@ -20,17 +20,13 @@ fn every_index_passes_every_stress_case() {
     let summary = stress::run(&config).unwrap();
     let per_index = summary.cases.len() / index_names().len();
     assert!(per_index >= 19, "{per_index} cases per index");
-    for c in summary
-        .cases
-        .iter()
-        .filter(|c| PEERS.contains(&c.index.as_str()))
-    {
+    for c in summary.cases.iter().filter(|c| is_peer(&c.index)) {
         eprintln!(
             "peer {} on {}: {} mismatches",
             c.index, c.case, c.mismatches
         );
     }
-    let failures = summary.failures(PEERS);
+    let failures = summary.failures(&peer_names());
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",
@@ -71,7 +67,7 @@ fn watertight_kernel_misses_nothing_in_any_index_at_any_offset() {
     let rows = watertight::run(&config).unwrap();
     assert!(rows.len() >= 2 * 9, "{} rows", rows.len());
     for r in &rows {
-        if PEERS.contains(&r.index.as_str()) {
+        if is_peer(&r.index) {
             eprintln!(
                 "peer {} on {} at {:e}: {} misses",
                 r.index, r.mesh, r.offset, r.misses

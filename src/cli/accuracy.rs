@@ -56,7 +56,7 @@ pub fn run(a: AccuracyArgs) -> anyhow::Result<()> {
         .iter()
         .filter(|l| l.kernel == crate::geometry::TriangleKernelKind::Watertight && l.misses > 0)
         // Peers' losses are in the table; they do not fail the run.
-        .filter(|l| !crate::stress::PEERS.contains(&l.index.as_str()))
+        .filter(|l| !crate::index::is_peer(&l.index))
         .collect();
     eprintln!("wrote {}", a.out.display());
     // The watertight kernel must lose no ray from inside a closed mesh, in any of our indices.

@@ -184,7 +184,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
     if res.peer_mismatch_total > 0 {
         eprintln!(
             "note: peers ({}) differed from brute force on {} results (see mismatches.txt)",
-            crate::index::PEERS.join(", "),
+            crate::index::peer_names().join(", "),
             res.peer_mismatch_total
         );
     }

@@ -26,7 +26,7 @@ pub fn run(a: VerifyArgs) -> anyhow::Result<()> {
         println!("{} / {}: {}", n.scene, n.what, n.reason);
     }
     for m in &res.mismatches {
-        let peer = crate::index::PEERS.contains(&m.index.as_str());
+        let peer = crate::index::is_peer(&m.index);
         eprintln!(
             "{} {} / {} / {} vs {}: {}",
             if peer {

@@ -6,7 +6,7 @@
 //! `repeats` runs (median and spread). Verification compares, bit for bit:
 //! - every index with brute force, on every ray when `rays x primitives` fits the verification
 //!   budget, else on a deterministic sample (every k-th ray) that fits it;
-//! - every index with the first of our indices in the list (peers, [`PEERS`], excluded), on every
+//! - every index with the first of our indices in the list (peers, [`is_peer`], excluded), on every
 //!   ray (so all indices agree pairwise);
 //! - every timed pass with the same index's counting pass.
 
@@ -14,7 +14,7 @@ use super::timing::{BatchHits, Query, Timing, counting_pass, timed_pass};
 use super::verify::{Mismatch, compare_closest};
 use super::workload::{self, RaySet, SetSizes};
 use crate::geometry::{Ray, TriangleKernelKind};
-use crate::index::{BuildError, Counters, IndexSpec, PEERS, TraceIndex, build_index};
+use crate::index::{BuildError, Counters, IndexSpec, TraceIndex, build_index, is_peer};
 use crate::scene::{Scene, SceneGeometry};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
@@ -101,7 +101,7 @@ pub struct SuiteResult {
     pub mismatches: Vec<MismatchRecord>,
     /// Mismatching results of our indices: any fails the run.
     pub mismatch_total: usize,
-    /// Mismatching results of peer indices ([`crate::index::PEERS`]): reported, not a failure.
+    /// Mismatching results of peer indices ([`crate::index::Kind::Peer`]): reported, not a failure.
     pub peer_mismatch_total: usize,
     pub notes: Vec<Note>,
     /// Per scene and set: how brute-force verification covered the rays.
@@ -224,7 +224,7 @@ fn run_scene(
     let primary_hits = if needs_primary_hits {
         let tracer: &dyn TraceIndex = built
             .iter()
-            .find(|b| b.name() != "brute" && !PEERS.contains(&b.name()))
+            .find(|b| b.name() != "brute" && !is_peer(b.name()))
             .map_or(brute.as_ref(), |b| b.as_ref());
         let mut h = vec![None; primary.len()];
         pools
@@ -350,7 +350,7 @@ fn run_set(
                 m.iter_mut().for_each(|x| x.query = "any");
             }
             mismatches += m.len();
-            if PEERS.contains(&index.name()) {
+            if is_peer(index.name()) {
                 res.peer_mismatch_total += m.len();
             } else {
                 res.mismatch_total += m.len();
@@ -377,9 +377,7 @@ fn run_set(
         // The first of our indices is the one all others are compared with on every ray.
         match &first {
             Some((name, h)) => record(name, compare_closest(rays, h, &hits), res),
-            None if !PEERS.contains(&index.name()) => {
-                first = Some((index.name().to_owned(), hits.clone()))
-            }
+            None if !is_peer(index.name()) => first = Some((index.name().to_owned(), hits.clone())),
             None => {}
         }
         let total: Counters = counters.iter().copied().sum();

@@ -24,8 +24,8 @@ pub use kdtree::KdTree;
 pub use obvhs_peer::{ObvhsBvh2, ObvhsCwBvh};
 pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};
 pub use registry::{
-    BoundIndex, IndexSpec, PEERS, TraceIndex, build_index, build_index_on, index_names,
-    parse_params,
+    BoundIndex, IndexSpec, Kind, TraceIndex, build_index, build_index_on, index_names, is_peer,
+    parse_params, peer_names,
 };
 pub use stats::{Counters, NoStats, Stats};
 

@@ -20,59 +20,65 @@ const CHUNK: usize = 64;
 type BuildFn =
     fn(&IndexSpec, &SceneGeometry, TriangleKernelKind) -> Result<Box<dyn TraceIndex>, BuildError>;
 
+/// Whose triangle and box tests an index uses, which decides what a mismatch means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Ours: bound by the hit contract (brute force's hits, bit for bit); a mismatch is a bug.
+    Ours,
+    /// A peer (obvhs, ...) with its own triangle or box tests: its mismatches are reported, and
+    /// callers decide whether they fail a run.
+    Peer,
+}
+
 struct Entry {
     name: &'static str,
     build: BuildFn,
+    kind: Kind,
 }
 
-/// Every index the suite knows, in report order. Adding an index is one line here.
-const REGISTRY: &[Entry] = &[
+const fn entry<I: Index>(name: &'static str, kind: Kind) -> Entry {
     Entry {
-        name: "brute",
-        build: build_dyn::<BruteForce>,
-    },
-    Entry {
-        name: "bvh",
-        build: build_dyn::<Bvh>,
-    },
-    Entry {
-        name: "grid",
-        build: build_dyn::<super::Grid>,
-    },
-    Entry {
-        name: "octree",
-        build: build_dyn::<NeighborOctree>,
-    },
-    Entry {
-        name: "octree-topdown",
-        build: build_dyn::<TopDownOctree>,
-    },
-    Entry {
-        name: "kdtree",
-        build: build_dyn::<KdTree>,
-    },
-    Entry {
-        name: "bsp",
-        build: build_dyn::<Bsp>,
-    },
-    Entry {
-        name: "obvhs-bvh2",
-        build: build_dyn::<ObvhsBvh2>,
-    },
-    Entry {
-        name: "obvhs-cwbvh",
-        build: build_dyn::<ObvhsCwBvh>,
-    },
-];
+        name,
+        build: build_dyn::<I>,
+        kind,
+    }
+}
 
-/// Indices that are peers, not ours (obvhs, which traverses with its own box tests): their
-/// mismatches are reported, and callers decide whether they fail a run. The one list of such
-/// exceptions.
-pub const PEERS: &[&str] = &["obvhs-bvh2", "obvhs-cwbvh"];
+/// Every index the suite knows, in report order. Adding an index is one line here; it is then
+/// in `run`, `verify`, `stress`, `render`, the agreement and property tests and the benches.
+#[rustfmt::skip]
+const REGISTRY: &[Entry] = &[
+    entry::<BruteForce>("brute", Kind::Ours),
+    entry::<Bvh>("bvh", Kind::Ours),
+    entry::<super::Grid>("grid", Kind::Ours),
+    entry::<NeighborOctree>("octree", Kind::Ours),
+    entry::<TopDownOctree>("octree-topdown", Kind::Ours),
+    entry::<KdTree>("kdtree", Kind::Ours),
+    entry::<Bsp>("bsp", Kind::Ours),
+    entry::<ObvhsBvh2>("obvhs-bvh2", Kind::Peer),
+    entry::<ObvhsCwBvh>("obvhs-cwbvh", Kind::Peer),
+];
 
 /// Names of all registered indices, in report order.
 pub fn index_names() -> Vec<&'static str> {
     REGISTRY.iter().map(|e| e.name).collect()
+}
+
+/// Whether `name` is a registered peer ([`Kind::Peer`]): its mismatches are reported, not
+/// failed. The one place that answers this.
+pub fn is_peer(name: &str) -> bool {
+    REGISTRY
+        .iter()
+        .any(|e| e.name == name && e.kind == Kind::Peer)
+}
+
+/// Names of the registered peers, in report order.
+pub fn peer_names() -> Vec<&'static str> {
+    REGISTRY
+        .iter()
+        .filter(|e| e.kind == Kind::Peer)
+        .map(|e| e.name)
+        .collect()
 }
 
 /// An index name with optional parameters: `NAME` or `NAME:key=value,key=value`, values in TOML

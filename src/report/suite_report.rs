@@ -317,7 +317,7 @@ pub fn summary_markdown(
              with its own box tests, which lose ties at shared edges and some grazing or \
              very-near hits. Reported in the `mismatches` column and `mismatches.txt`, not a \
              failure of the run.\n",
-            crate::index::PEERS.join(", "),
+            crate::index::peer_names().join(", "),
             res.peer_mismatch_total
         );
     }

@@ -20,8 +20,6 @@ use std::sync::Arc;
 use std::sync::mpsc;
 use std::time::Duration;
 
-pub use crate::index::PEERS;
-
 /// What to run.
 #[derive(Debug, Clone)]
 pub struct StressConfig {

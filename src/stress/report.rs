@@ -1,8 +1,9 @@
 //! Files and tables of `accelbench stress`: `stress.csv` (one row per case and index),
 //! `self_intersection.csv`, and `stress.md` (the summary the run report includes).
 
+use super::StressSummary;
 use super::self_intersection::{RESOLVABLE_ULPS, SpawnRow, failures_per_method};
-use super::{PEERS, StressSummary};
+use crate::index::peer_names;
 use crate::report::{ReportError, write_csv};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -63,7 +64,7 @@ pub fn markdown(s: &StressSummary) -> String {
     let _ = writeln!(
         m,
         "Peers whose mismatches are reported but may be tolerated: {}.\n",
-        PEERS.join(", ")
+        peer_names().join(", ")
     );
     m.push_str(&case_table(s));
     let failures: Vec<_> = s.cases.iter().filter(|c| !c.passed).collect();

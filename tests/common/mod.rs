@@ -1,5 +1,6 @@
 //! Shared test scenes and ray families for the cross-index agreement tests: the same test body
-//! runs against every index (`assert_agrees("grid", ...)`).
+//! runs against every index (`assert_agrees("grid", ...)`, and `tests/agreement.rs` over
+//! the whole registry).
 #![allow(dead_code)]
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
@@ -88,13 +89,6 @@ pub fn agreement_rays(scene: &Scene, n: usize) -> Vec<Ray> {
         }
     }
     rays
-}
-
-/// Asserts that index `spec` returns brute force's hits bit for bit on every agreement scene.
-pub fn assert_agrees_everywhere(spec: &str, rays_per_scene: usize) {
-    for scene in agreement_scenes() {
-        assert_agrees(spec, &scene, &agreement_rays(&scene, rays_per_scene));
-    }
 }
 
 /// Asserts agreement with brute force on one scene and ray set, printing the first mismatches.

@@ -1,0 +1,76 @@
+//! The hit contract, one test body for every registered index: each of our indices returns
+//! brute force's closest hit (same primitive, bit-identical `t`, ties to the lowest id) and
+//! the matching any-hit answer, on the generated agreement scenes with every triangle kernel
+//! and on the bunny's protocol rays. Peers ([`is_peer`]) go through the same body, but their
+//! mismatches are printed (`--nocapture`), not failed; `tests/obvhs_peer.rs` classifies them.
+//! A new index is covered by its registry line alone. The stress cases run over the registry
+//! in `tests/stress.rs`; index-specific parameters and structure invariants stay in the index's
+//! own test file.
+
+mod common;
+
+use accelbench::geometry::{Ray, TriangleKernelKind};
+use accelbench::harness::verify::compare_indices;
+use accelbench::index::{IndexSpec, build_index, index_names, is_peer};
+use accelbench::rays::{incoherent_rays, primary_rays};
+use accelbench::scene::Scene;
+
+/// Rays per agreement scene (the most any index's own test used before).
+const RAYS_PER_SCENE: usize = 1500;
+
+/// Every registered index except brute force itself, against brute force on `scene`'s rays.
+fn assert_every_index_agrees(scene: &Scene, kernel: TriangleKernelKind, rays: &[Ray]) {
+    let geom = scene.geometry();
+    let brute = build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
+    for name in index_names().into_iter().filter(|n| *n != "brute") {
+        let index = build_index(&IndexSpec::named(name), &geom, kernel)
+            .unwrap_or_else(|e| panic!("{name} on {}: {e}", scene.name));
+        let m = compare_indices(brute.as_ref(), index.as_ref(), rays);
+        if is_peer(name) {
+            if !m.is_empty() {
+                eprintln!(
+                    "peer {name} ({kernel}) on {}: {} of {} mismatch",
+                    scene.name,
+                    m.len(),
+                    rays.len()
+                );
+            }
+            continue;
+        }
+        assert!(
+            m.is_empty(),
+            "{name} ({kernel}) on {}: {} of {} rays mismatch, first: {}",
+            scene.name,
+            m.len(),
+            rays.len(),
+            m.iter()
+                .take(3)
+                .map(|m| m.to_string())
+                .collect::<Vec<_>>()
+                .join("\n")
+        );
+    }
+}
+
+#[test]
+fn every_index_agrees_on_the_generated_scenes_with_every_kernel() {
+    for scene in common::agreement_scenes() {
+        let rays = common::agreement_rays(&scene, RAYS_PER_SCENE);
+        for kernel in TriangleKernelKind::ALL {
+            assert_every_index_agrees(&scene, kernel, &rays);
+        }
+    }
+}
+
+#[test]
+fn every_index_agrees_on_the_bunny_protocol_rays() {
+    let Some(bunny) = common::bunny() else {
+        eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
+        return;
+    };
+    let b = bunny.ray_set_bounds();
+    let mut rays = primary_rays(&b, 48, 48).unwrap();
+    rays.extend(incoherent_rays(&b, 2000, 42));
+    rays.extend(common::agreement_rays(&bunny, 2000));
+    assert_every_index_agrees(&bunny, TriangleKernelKind::Watertight, &rays);
+}
