@@ -11,6 +11,25 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
+/// Creates the report folder `dir` (if needed) and checks that a file can be written in it, so a
+/// bad `--out` fails before the suite runs rather than after.
+pub fn prepare_report_dir(dir: &Path) -> Result<(), ReportError> {
+    let err = |message: String| ReportError::Write {
+        path: dir.to_owned(),
+        message,
+    };
+    if dir.exists() && !dir.is_dir() {
+        return Err(err(
+            "it is a file, not a folder: give --out a folder (new or existing)".into(),
+        ));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| err(format!("cannot create the folder ({e})")))?;
+    let probe = dir.join(".accelbench-write-check");
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(|e| err(format!("cannot write in the folder ({e})")))
+}
+
 /// Writes the whole report into `dir`.
 pub fn write_suite_report(
     dir: &Path,
