@@ -7,7 +7,6 @@ pub use super::run_meta::{RunMeta, run_id_now};
 use super::suite_plots::{scenes, uniq, uniq_threads, write_plots};
 use super::{ReportError, write_csv};
 use crate::harness::suite::{ResultRow, SuiteResult};
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -73,6 +72,73 @@ fn fmt_f(v: f64, digits: usize) -> String {
     }
 }
 
+/// Rows of one index, in first-seen order of the indices.
+fn by_index<'a>(rows: &[&'a ResultRow]) -> Vec<(&'a str, Vec<&'a ResultRow>)> {
+    let mut v: Vec<(&str, Vec<&ResultRow>)> = Vec::new();
+    for r in rows {
+        match v.iter_mut().find(|(i, _)| *i == r.index) {
+            Some((_, rs)) => rs.push(r),
+            None => v.push((&r.index, vec![r])),
+        }
+    }
+    v
+}
+
+/// Build time and memory per index of one scene.
+fn build_table(rows: &[&ResultRow]) -> String {
+    let mut s = "| index | build ms | bytes/prim |\n|---|---:|---:|\n".to_owned();
+    for (name, rs) in by_index(rows) {
+        let r0 = rs[0];
+        let per_prim = r0.memory_bytes as f64 / r0.primitives.max(1) as f64;
+        let _ = writeln!(
+            s,
+            "| {name} | {} | {} |",
+            fmt_f(r0.build_ms, 2),
+            fmt_f(per_prim, 1)
+        );
+    }
+    s
+}
+
+/// One ray set of one scene: a row per index with Mrays/s at each thread count, its ratio to
+/// the fastest index at the most threads, and tests and node steps per ray.
+fn set_table(rows: &[&ResultRow], threads: &[usize]) -> String {
+    let most = threads.last().copied().unwrap_or(1);
+    let rate = |rs: &[&ResultRow], t: usize| {
+        rs.iter()
+            .find(|r| r.threads == t)
+            .map_or(f64::NAN, |r| r.mrays_per_s)
+    };
+    let indices = by_index(rows);
+    let best = indices
+        .iter()
+        .map(|(_, rs)| rate(rs, most))
+        .filter(|v| v.is_finite())
+        .fold(f64::NAN, f64::max);
+    let mut s = "| index |".to_owned();
+    for t in threads {
+        let _ = write!(s, " Mrays/s {t}t |");
+    }
+    let _ = writeln!(s, " vs best ({most}t) | tests/ray | steps/ray |");
+    s.push_str("|---");
+    s.push_str(&"|---:".repeat(threads.len() + 3));
+    s.push_str("|\n");
+    for (name, rs) in &indices {
+        let _ = write!(s, "| {name} |");
+        for &t in threads {
+            let _ = write!(s, " {} |", fmt_f(rate(rs, t), 2));
+        }
+        let _ = writeln!(
+            s,
+            " {} | {} | {} |",
+            fmt_f(rate(rs, most) / best, 2),
+            fmt_f(rs[0].prim_tests_per_ray, 1),
+            fmt_f(rs[0].node_visits_per_ray, 1)
+        );
+    }
+    s
+}
+
 /// The human-readable summary.
 pub fn summary_markdown(
     meta: &RunMeta,
@@ -123,54 +189,16 @@ pub fn summary_markdown(
     for scene in scenes(&res.rows) {
         let rows: Vec<&ResultRow> = res.rows.iter().filter(|r| r.scene == scene).collect();
         let _ = writeln!(s, "## {scene} ({} primitives)\n", rows[0].primitives);
-        let sets = uniq(rows.iter().map(|r| r.ray_set.as_str()));
-        let mut header = "| index | build ms | bytes/prim |".to_owned();
-        let mut rule = "|---|---:|---:|".to_owned();
-        for set in &sets {
-            for t in &threads {
-                let _ = write!(header, " {set} Mrays/s {t}t |");
-                rule.push_str("---:|");
-            }
-            let _ = write!(header, " {set} tests/ray | {set} nodes/ray |");
-            rule.push_str("---:|---:|");
-        }
-        let _ = writeln!(s, "{header}\n{rule}");
-        let mut by_index: BTreeMap<usize, (&str, Vec<&ResultRow>)> = BTreeMap::new();
-        for r in &rows {
-            let pos = rows.iter().position(|x| x.index == r.index).unwrap_or(0);
-            by_index
-                .entry(pos)
-                .or_insert((&r.index, Vec::new()))
-                .1
-                .push(r);
-        }
-        for (name, rs) in by_index.values() {
-            let r0 = rs[0];
-            let _ = write!(
+        let _ = writeln!(s, "{}", build_table(&rows));
+        for set in uniq(rows.iter().map(|r| r.ray_set.as_str())) {
+            let in_set: Vec<&ResultRow> =
+                rows.iter().copied().filter(|r| r.ray_set == set).collect();
+            let _ = writeln!(
                 s,
-                "| {name} | {} | {} |",
-                fmt_f(r0.build_ms, 2),
-                fmt_f(r0.memory_bytes as f64 / r0.primitives.max(1) as f64, 1)
+                "### {scene}, {set} rays\n\n{}",
+                set_table(&in_set, &threads)
             );
-            for set in &sets {
-                for t in &threads {
-                    let v = rs
-                        .iter()
-                        .find(|r| r.ray_set == *set && r.threads == *t)
-                        .map_or(f64::NAN, |r| r.mrays_per_s);
-                    let _ = write!(s, " {} |", fmt_f(v, 2));
-                }
-                let r = rs.iter().find(|r| r.ray_set == *set);
-                let _ = write!(
-                    s,
-                    " {} | {} |",
-                    fmt_f(r.map_or(f64::NAN, |r| r.prim_tests_per_ray), 1),
-                    fmt_f(r.map_or(f64::NAN, |r| r.node_visits_per_ray), 1)
-                );
-            }
-            s.push('\n');
         }
-        s.push('\n');
         for v in res.verification.iter().filter(|v| v.scene == scene) {
             let _ = writeln!(s, "- verification, {}: {}", v.what, v.reason);
         }
