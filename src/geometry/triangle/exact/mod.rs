@@ -38,7 +38,7 @@ use super::{Triangle, TriangleKernel, in_interval};
 use crate::geometry::Ray;
 use expansion::ExactSum;
 use glam::{DVec3, Vec3A};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::cell::Cell;
 
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Exact;
@@ -46,14 +46,16 @@ pub struct Exact;
 /// `2^-49`: the static filter's constant (see the module docs).
 const FILTER: f64 = 1.0 / (1u64 << 49) as f64;
 
-/// Edge functions whose sign the filter could not decide, over the whole process (counted only
-/// on the rare fallback path; read with [`fallback_count`]).
-static FALLBACKS: AtomicU64 = AtomicU64::new(0);
+thread_local! {
+    /// Edge functions of this thread whose sign the filter could not decide (counted only on
+    /// the rare fallback path; read with [`fallback_count`]).
+    static FALLBACKS: Cell<u64> = const { Cell::new(0) };
+}
 
-/// How many edge functions needed the exact fallback since the process started (every call of
-/// the kernel, every thread). Differences of two readings give the count of a measured pass.
+/// How many edge functions needed the exact fallback on the calling thread since it started.
+/// The difference of two readings around a pass on one thread is that pass's count.
 pub fn fallback_count() -> u64 {
-    FALLBACKS.load(Ordering::Relaxed)
+    FALLBACKS.with(Cell::get)
 }
 
 impl TriangleKernel for Exact {
@@ -120,7 +122,7 @@ fn intersect_line(tri: &Triangle, ray: &Ray) -> Option<f32> {
 #[cold]
 #[inline(never)]
 pub fn exact_edge_sign(p: Vec3A, q: Vec3A, ray: &Ray) -> Option<i32> {
-    FALLBACKS.fetch_add(1, Ordering::Relaxed);
+    FALLBACKS.with(|n| n.set(n.get() + 1));
     let (o, d) = (ray.origin, ray.dir);
     if !(p.is_finite() && q.is_finite() && o.is_finite() && d.is_finite()) {
         return None;
