@@ -246,3 +246,79 @@ fn bunny_example_scene_loads_when_shared_meshes_are_present() {
     // 69,451 bunny triangles + a 50,000-triangle terrain (2 * 158^2 = 49,928).
     assert!(info.contains("triangles:   119379"), "{info}");
 }
+
+/// Each cause appears once in the message (no "cause: cause" from a `{source}` in the text that
+/// anyhow's `{:#}` also prints as a chained source).
+#[test]
+fn error_causes_are_printed_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let folder = d.join("folder.obj");
+    std::fs::create_dir(&folder).unwrap();
+    let out = run(&["info", "--scene", &path(&folder)]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert_eq!(err.matches("os error 21").count(), 1, "{err}");
+    let rays = file(d, "zero.rays", &ray_record([0.0; 3], [0.0; 3]));
+    let out = run(&["trace", "--scene", "icosphere:n=100", "--rays", &rays]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("record 0"), "{err}");
+    assert_eq!(err.matches("direction is zero").count(), 1, "{err}");
+}
+
+#[test]
+fn obj_face_errors_name_the_line_and_a_byte_order_mark_is_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let truncated = file(d, "truncated.obj", format!("{tri}f 1 2\n").as_bytes());
+    fails_with(
+        &["info", "--scene", &truncated],
+        &["truncated.obj", "line 5", "at least 3 vertices"],
+    );
+    let out_of_range = file(d, "range.obj", format!("{tri}f 1 2 7\n").as_bytes());
+    fails_with(
+        &["info", "--scene", &out_of_range],
+        &["range.obj", "line 5", "vertex 7 does not exist"],
+    );
+    let bom = file(d, "bom.obj", format!("\u{feff}{tri}").as_bytes());
+    assert!(succeeds(&["info", "--scene", &bom]).contains("primitives:  1"));
+}
+
+#[test]
+fn run_checks_its_output_folder_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let a_file = file(dir.path(), "not-a-folder", b"");
+    let start = std::time::Instant::now();
+    fails_with(
+        &["run", "--quick", "--out", &a_file],
+        &["not-a-folder", "not a folder"],
+    );
+    let below = format!("{a_file}/sub");
+    fails_with(
+        &["run", "--quick", "--out", &below],
+        &["not-a-folder/sub", "cannot create the folder"],
+    );
+    // A quick suite takes seconds; the check takes milliseconds.
+    assert!(start.elapsed().as_secs() < 2, "{:?}", start.elapsed());
+}
+
+/// `accelbench info ... | true`: the reader is gone before the output is written.
+#[test]
+fn a_closed_output_pipe_ends_the_command_quietly() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(["info", "--scene", "icosphere:n=20000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !err.contains("panicked") && !err.contains("Broken pipe"),
+        "{err}"
+    );
+}

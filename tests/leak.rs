@@ -1,5 +1,5 @@
 //! Leak test: from the centre of a closed icosphere, rays in every direction, including rays
-//! aimed exactly at its vertices and edge midpoints, never escape with the watertight kernel.
+//! aimed exactly at its vertices and edge midpoints, never escape with the watertight or the exact kernel.
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::index::{IndexSpec, build_index};
 use accelbench::rays::incoherent_rays;
@@ -7,7 +7,7 @@ use accelbench::scene::{Scene, generators::icosphere_mesh};
 use glam::{Vec3, Vec3A};
 
 #[test]
-fn watertight_brute_force_misses_nothing_from_inside() {
+fn watertight_and_exact_brute_force_miss_nothing_from_inside() {
     let (verts, faces) = icosphere_mesh(3);
     let tris = faces
         .iter()
@@ -35,20 +35,17 @@ fn watertight_brute_force_misses_nothing_from_inside() {
     }
     let b = accelbench::geometry::Aabb::new(Vec3A::splat(-0.3), Vec3A::splat(0.3));
     rays.extend(incoherent_rays(&b, 100_000, 9));
-    let index = build_index(
-        &IndexSpec::named("brute"),
-        &scene.geometry(),
-        TriangleKernelKind::Watertight,
-    )
-    .unwrap();
-    let mut hits = vec![None; rays.len()];
-    index.closest_hits(&rays, &mut hits);
-    let leaks: Vec<usize> = (0..rays.len()).filter(|&i| hits[i].is_none()).collect();
-    assert!(
-        leaks.is_empty(),
-        "{} of {} rays leaked, first {:?}",
-        leaks.len(),
-        rays.len(),
-        rays[leaks[0]]
-    );
+    for kernel in [TriangleKernelKind::Watertight, TriangleKernelKind::Exact] {
+        let index = build_index(&IndexSpec::named("brute"), &scene.geometry(), kernel).unwrap();
+        let mut hits = vec![None; rays.len()];
+        index.closest_hits(&rays, &mut hits);
+        let leaks: Vec<usize> = (0..rays.len()).filter(|&i| hits[i].is_none()).collect();
+        assert!(
+            leaks.is_empty(),
+            "{kernel}: {} of {} rays leaked, first {:?}",
+            leaks.len(),
+            rays.len(),
+            rays[leaks[0]]
+        );
+    }
 }

@@ -5,6 +5,7 @@
 //! scene and ray values, so differences of two inputs are exact (see [`Dd::diff`]) and every
 //! later operation carries a relative error near `2^-104`.
 
+pub use crate::geometry::triangle::exact::expansion::{two_prod, two_sum};
 use glam::Vec3A;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -13,21 +14,6 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 pub struct Dd {
     pub hi: f64,
     pub lo: f64,
-}
-
-/// `a + b` as an exact sum `s + e` (Knuth's TwoSum).
-#[inline]
-pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// `a * b` as an exact sum `p + e` (with a fused multiply-add).
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
 }
 
 /// Renormalizes `a + b` when `|a| >= |b|`.

@@ -7,7 +7,7 @@ use super::reference::{self, Reference};
 use super::shapes_f64;
 use crate::geometry::shapes::{cone, cylinder, ellipsoid, obb, polygon};
 use crate::geometry::sphere::{intersect_algebraic, intersect_geometric};
-use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
+use crate::geometry::triangle::{Exact, MollerTrumbore, Parametric, PlaneEdges, Watertight};
 use crate::geometry::{Ray, Shape, Sphere, Triangle, TriangleKernel};
 use serde::Serialize;
 use std::hint::black_box;
@@ -21,6 +21,8 @@ pub enum Kernel {
     Parametric,
     MollerTrumbore,
     Watertight,
+    /// Exact decisions: `f64` filter, exact fallback (`f32` only: it has no `f64` mirror).
+    Exact,
     SphereAlgebraic,
     SphereGeometric,
     /// Oriented box, slab method (`shapes::obb::intersect_slabs`).
@@ -35,21 +37,29 @@ pub enum Kernel {
 }
 
 impl Kernel {
-    pub const ALL: [Kernel; 13] = [
-        Kernel::PlaneEdges,
-        Kernel::Parametric,
-        Kernel::MollerTrumbore,
-        Kernel::Watertight,
-        Kernel::SphereAlgebraic,
-        Kernel::SphereGeometric,
-        Kernel::BoxSlabs,
-        Kernel::BoxFrontPlanes,
-        Kernel::ConvexPolygon,
-        Kernel::ConcavePolygon,
-        Kernel::Cylinder,
-        Kernel::Cone,
-        Kernel::Ellipsoid,
-    ];
+    /// Every kernel: the triangle and sphere kernels, then [`Kernel::SHAPES`].
+    pub const ALL: [Kernel; 14] = {
+        let first = [
+            Kernel::PlaneEdges,
+            Kernel::Parametric,
+            Kernel::MollerTrumbore,
+            Kernel::Watertight,
+            Kernel::Exact,
+            Kernel::SphereAlgebraic,
+            Kernel::SphereGeometric,
+        ];
+        let mut all = [Kernel::PlaneEdges; 14];
+        let mut i = 0;
+        while i < all.len() {
+            all[i] = if i < first.len() {
+                first[i]
+            } else {
+                Kernel::SHAPES[i - first.len()]
+            };
+            i += 1;
+        }
+        all
+    };
 
     /// The shape kernels (measured in `f32` against their `f64` mirrors).
     pub const SHAPES: [Kernel; 7] = [
@@ -68,6 +78,7 @@ impl Kernel {
             Kernel::Parametric => "parametric",
             Kernel::MollerTrumbore => "moller-trumbore",
             Kernel::Watertight => "watertight",
+            Kernel::Exact => "exact",
             Kernel::SphereAlgebraic => "sphere-algebraic",
             Kernel::SphereGeometric => "sphere-geometric",
             Kernel::BoxSlabs => "box-slabs",
@@ -204,6 +215,7 @@ fn tri_f32(k: Kernel) -> TriF32 {
         Kernel::PlaneEdges => PlaneEdges::intersect,
         Kernel::Parametric => Parametric::intersect,
         Kernel::MollerTrumbore => MollerTrumbore::intersect,
+        Kernel::Exact => Exact::intersect,
         _ => Watertight::intersect,
     }
 }
@@ -241,7 +253,7 @@ pub fn shape_f32(kernel: Kernel, shape: &Shape, ray: &Ray, t_max: f32) -> Option
     }
 }
 
-/// The triangle or sphere kernel variants, in both precisions.
+/// The triangle or sphere kernel variants, in both precisions (the exact kernel in `f32` only).
 pub fn variants(spheres: bool) -> Vec<(Kernel, Precision)> {
     Kernel::ALL
         .into_iter()
@@ -252,7 +264,12 @@ pub fn variants(spheres: bool) -> Vec<(Kernel, Precision)> {
                 k.is_triangle()
             }
         })
-        .flat_map(|k| [(k, Precision::F32), (k, Precision::F64)])
+        .flat_map(|k| {
+            let f64_mirror = k != Kernel::Exact;
+            [(k, Precision::F32)]
+                .into_iter()
+                .chain(f64_mirror.then_some((k, Precision::F64)))
+        })
         .collect()
 }
 
@@ -300,6 +317,7 @@ fn one_pass(
             Kernel::PlaneEdges => PlaneEdges::intersect(p, r, f32::INFINITY).is_some(),
             Kernel::Parametric => Parametric::intersect(p, r, f32::INFINITY).is_some(),
             Kernel::MollerTrumbore => MollerTrumbore::intersect(p, r, f32::INFINITY).is_some(),
+            Kernel::Exact => Exact::intersect(p, r, f32::INFINITY).is_some(),
             _ => Watertight::intersect(p, r, f32::INFINITY).is_some(),
         }),
         (Prims::Tris(t), Precision::F64) => count_hits(t, r64, |p, r| match kernel {

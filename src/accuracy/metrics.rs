@@ -55,6 +55,10 @@ pub struct Tally {
     pub err_sum: f64,
     pub err_max: f64,
     pub err_n: usize,
+    /// Edge functions the exact kernel decided by its exact fallback (zero for other kernels).
+    pub fallbacks: u64,
+    /// Primitive tests made (three edge functions each for triangles).
+    pub tests: u64,
 }
 
 impl Tally {
@@ -69,6 +73,8 @@ impl Tally {
         self.err_sum += o.err_sum;
         self.err_max = self.err_max.max(o.err_max);
         self.err_n += o.err_n;
+        self.fallbacks += o.fallbacks;
+        self.tests += o.tests;
         self
     }
 

@@ -172,8 +172,10 @@ pub fn leak_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> 
                 .iter()
                 .filter(|r| r.kernel == k && r.precision == p && r.family == Family::EdgesInside)
                 .map(|r| (r.offset.max(0.1), r.false_miss_rate))
-                .collect();
-            series.push(Series::new(label(k, p), points));
+                .collect::<Vec<_>>();
+            if !points.is_empty() {
+                series.push(Series::new(label(k, p), points));
+            }
         }
     }
     let mut chart = Chart::new(
@@ -232,6 +234,7 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
             );
         }
     }
+    fallback_table(&mut s, rows);
     shape_table(&mut s, rows);
     s.push_str(
         "\n# Watertightness (rays from inside closed meshes)\n\n\
@@ -254,6 +257,31 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
         );
     }
     s
+}
+
+/// The exact kernel's wrong decisions and fallback rate per family (pooled over offsets).
+fn fallback_table(s: &mut String, rows: &[AccuracyRow]) {
+    s.push_str(
+        "\n# Exact kernel per family\n\nWrong decisions (false misses + false hits + wrong \
+         primitives) and the share of edge functions decided by the exact fallback.\n\n\
+         | family | rays | wrong decisions | exact fallback rate |\n|---|---|---|---|\n",
+    );
+    for family in Family::MESH {
+        let mine: Vec<&AccuracyRow> = rows
+            .iter()
+            .filter(|r| r.kernel == Kernel::Exact && r.family == family)
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let rays: usize = mine.iter().map(|r| r.rays).sum();
+        let wrong: usize = mine
+            .iter()
+            .map(|r| r.false_misses + r.false_hits + r.wrong_primitives)
+            .sum();
+        let rate = mine.iter().map(|r| r.exact_fallback_rate).sum::<f64>() / mine.len() as f64;
+        let _ = writeln!(s, "| {} | {rays} | {wrong} | {rate:.3e} |", family.name());
+    }
 }
 
 /// The shape kernels per family (pooled over offsets).

@@ -8,6 +8,7 @@ use super::kernels::{Prims, kernel_closest, time_variant, variants};
 use super::kernels_f64::Ray64;
 use super::metrics::{Tally, rate, reference_closest};
 use super::shape_families::{self, shape_at, shape_rays};
+use crate::geometry::triangle::exact::fallback_count;
 use crate::geometry::{Ray, ShapeError};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -84,6 +85,9 @@ pub struct AccuracyRow {
     /// of `timing_repeats`, each over at least `kernels::MIN_TIMED_TESTS` tests (NaN when not
     /// timed).
     pub ns_per_test: f64,
+    /// The exact kernel's edge functions decided by its exact fallback, over all its edge
+    /// functions (three per primitive test) on this family and offset; NaN for other kernels.
+    pub exact_fallback_rate: f64,
 }
 
 /// Runs the study: one row per kernel, precision, family and offset (shape kernels in `f32`
@@ -159,7 +163,10 @@ fn measure(
                     let r = reference_closest(&prims, &bsph, ray);
                     let r64 = Ray64::from_ray(ray);
                     for (slot, &(k, p)) in acc.iter_mut().zip(vars) {
+                        let before = fallback_count();
                         let got = kernel_closest(k, p, &prims, ray, &r64);
+                        slot.fallbacks += fallback_count() - before;
+                        slot.tests += prims.len() as u64;
                         slot.score(&prims, ray, r, got);
                     }
                     acc
@@ -192,6 +199,11 @@ fn measure(
                     t.err_sum / t.err_n as f64
                 },
                 ns_per_test: ns,
+                exact_fallback_rate: if kernel == Kernel::Exact {
+                    t.fallbacks as f64 / (3 * t.tests.max(1)) as f64
+                } else {
+                    f64::NAN
+                },
             });
         }
     }

@@ -56,6 +56,7 @@ enum Command {
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
 pub fn main() -> ExitCode {
+    end_quietly_on_closed_pipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run(a) => run::run(a),
@@ -76,6 +77,18 @@ pub fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Restores the default action of SIGPIPE (end the process), which Rust's runtime sets to
+/// "ignore": without this, `accelbench info ... | head` panics with "failed printing to
+/// stdout: Broken pipe" when `head` closes the pipe. Every command then ends quietly, as
+/// Unix tools do.
+fn end_quietly_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in main, before any thread starts; SIG_DFL is a valid action.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 

@@ -6,7 +6,7 @@ use super::suite_args::SuiteArgs;
 use crate::harness::suite::{check_specs, run_suite_with};
 use crate::index::{TraceIndex, build_index};
 use crate::render::{Picture, RenderOptions, write_scene_pictures};
-use crate::report::suite_report::{RunMeta, run_id_now, write_suite_report};
+use crate::report::suite_report::{RunMeta, prepare_report_dir, run_id_now, write_suite_report};
 use crate::scene::Scene;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -150,8 +150,6 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         .repeats
         .map_or(if a.suite.quick { 3 } else { 5 }, |r| r as usize);
     let cfg = a.suite.config(default_threads(&a.threads), repeats, true)?;
-    check_specs(&cfg.indices, cfg.kernel)?;
-    let scenes = a.suite.load_scenes()?;
     let run_id = format!(
         "{}{}",
         run_id_now(),
@@ -161,6 +159,9 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("reports").join(&run_id));
+    prepare_report_dir(&dir)?;
+    check_specs(&cfg.indices, cfg.kernel)?;
+    let scenes = a.suite.load_scenes()?;
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let pb = progress_bar(a.suite.quiet);
     let side = a

@@ -4,10 +4,11 @@
 
 use super::{parse_threads, with_threads};
 use crate::geometry::{Aabb, Ray, TriangleKernelKind};
-use crate::harness::sweep::{SweepPlot, SweepPoint, SweepRow, SweepSetup, run_sweep, write_sweep};
+use crate::harness::sweep::{SweepPoint, SweepRow, SweepSetup, run_sweep};
 use crate::index::OctreeParams;
 use crate::index::grid::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution, resolution};
 use crate::rays::{RaySetKind, incoherent_rays, primary_rays};
+use crate::report::sweep_report::{SweepPlot, write_sweep};
 use crate::scene::{Scene, load_scene};
 use anyhow::Context;
 use std::path::PathBuf;

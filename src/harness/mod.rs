@@ -1,6 +1,8 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
 pub mod suite;
+mod suite_result;
+mod suite_set;
 pub mod sweep;
 pub mod timing;
 pub mod verify;

@@ -10,14 +10,14 @@
 //!   ray (so all indices agree pairwise);
 //! - every timed pass with the same index's counting pass.
 
-use super::timing::{BatchHits, Query, Timing, counting_pass, timed_pass};
-use super::verify::{Mismatch, compare_closest};
+pub use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
+use super::suite_set::{SetRun, run_set};
 use super::workload::{self, RaySet, SetSizes};
-use crate::geometry::{Ray, TriangleKernelKind};
-use crate::index::{BuildError, Counters, IndexSpec, TraceIndex, build_index, is_peer};
+use crate::geometry::TriangleKernelKind;
+use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, is_peer};
 use crate::scene::{Scene, SceneGeometry};
 use indicatif::ProgressBar;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// What to run.
 #[derive(Debug, Clone, Serialize)]
@@ -43,76 +43,8 @@ fn specs_as_strings<S: serde::Serializer>(v: &[IndexSpec], s: S) -> Result<S::Ok
     s.collect_seq(v.iter().map(|x| x.to_string()))
 }
 
-/// One row of `results.csv`: scene x index x ray set x threads.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct ResultRow {
-    pub scene: String,
-    pub primitives: usize,
-    pub index: String,
-    pub params: String,
-    pub ray_set: String,
-    pub rays: usize,
-    pub threads: usize,
-    pub build_ms: f64,
-    pub memory_bytes: usize,
-    pub trace_ms_median: f64,
-    pub trace_ms_spread: f64,
-    pub mrays_per_s: f64,
-    pub mtests_per_s: f64,
-    pub prim_tests_per_ray: f64,
-    pub node_visits_per_ray: f64,
-    pub box_tests_per_ray: f64,
-    /// Rays with a hit (closest-hit sets) or occluded (any-hit sets).
-    pub hits: usize,
-    /// Rays on which this index disagreed with brute force, the first index or itself.
-    pub mismatches: usize,
-    /// Rays compared with brute force (all rays, or the sample's size).
-    pub brute_verified_rays: usize,
-    pub query: String,
-    pub kernel: String,
-    pub repeats: usize,
-}
-
-/// A mismatch with where it happened.
-#[derive(Debug, Clone)]
-pub struct MismatchRecord {
-    pub scene: String,
-    pub index: String,
-    pub ray_set: RaySet,
-    /// What it was compared with: `brute`, another index's name, or `counting-pass`.
-    pub against: String,
-    pub mismatch: Mismatch,
-}
-
-/// Something the suite did not run, and why.
-#[derive(Debug, Clone, Serialize)]
-pub struct Note {
-    pub scene: String,
-    pub what: String,
-    pub reason: String,
-}
-
-/// Everything a run produced.
-#[derive(Debug, Default)]
-pub struct SuiteResult {
-    pub rows: Vec<ResultRow>,
-    /// Mismatch counts per (scene, index, set, against) are in the rows; the first few of each
-    /// are kept here with the ray's bits.
-    pub mismatches: Vec<MismatchRecord>,
-    /// Mismatching results of our indices: any fails the run.
-    pub mismatch_total: usize,
-    /// Mismatching results of peer indices ([`crate::index::Kind::Peer`]): reported, not a failure.
-    pub peer_mismatch_total: usize,
-    pub notes: Vec<Note>,
-    /// Per scene and set: how brute-force verification covered the rays.
-    pub verification: Vec<Note>,
-}
-
-/// Mismatches kept per (scene, index, set, against) for the report.
-const KEEP_PER_PAIR: usize = 5;
-
 /// A rayon pool per thread count, built once per run.
-struct Pools(Vec<(usize, rayon::ThreadPool)>);
+pub(super) struct Pools(pub(super) Vec<(usize, rayon::ThreadPool)>);
 
 impl Pools {
     fn new(threads: &[usize]) -> Result<Pools, rayon::ThreadPoolBuildError> {
@@ -121,6 +53,11 @@ impl Pools {
             v.push((t, rayon::ThreadPoolBuilder::new().num_threads(t).build()?));
         }
         Ok(Pools(v))
+    }
+
+    /// The pool of the largest thread count (counting passes, references, pictures).
+    pub(super) fn all(&self) -> &rayon::ThreadPool {
+        &self.0.last().expect("at least one thread count").1
     }
 }
 
@@ -163,18 +100,13 @@ pub fn run_suite_with(
     for scene in scenes {
         let built = run_scene(scene, cfg, &pools, progress, build, &mut res);
         let refs: Vec<&dyn TraceIndex> = built.iter().map(|b| b.as_ref()).collect();
-        pools
-            .0
-            .last()
-            .unwrap()
-            .1
-            .install(|| after_scene(scene, &refs));
+        pools.all().install(|| after_scene(scene, &refs));
     }
     progress.finish_and_clear();
     Ok(res)
 }
 
-fn note(res: &mut SuiteResult, scene: &Scene, what: String, reason: String) {
+pub(super) fn note(res: &mut SuiteResult, scene: &Scene, what: String, reason: String) {
     res.notes.push(Note {
         scene: scene.name.clone(),
         what,
@@ -209,7 +141,6 @@ fn run_scene(
     }
     let brute = build_index(&IndexSpec::named("brute"), &geom, cfg.kernel)
         .expect("brute force builds on every valid scene");
-    let prims = scene.len() as u64;
 
     // Primary rays and hits feed the secondary sets; hits come from the first built index
     // (every index returns the same hits; verification checks that separately).
@@ -228,10 +159,7 @@ fn run_scene(
             .map_or(brute.as_ref(), |b| b.as_ref());
         let mut h = vec![None; primary.len()];
         pools
-            .0
-            .last()
-            .unwrap()
-            .1
+            .all()
             .install(|| tracer.closest_hits(&primary, &mut h));
         h
     } else {
@@ -254,189 +182,15 @@ fn run_scene(
             progress.inc(built.len() as u64);
             continue;
         }
-        run_set(
-            scene,
-            set,
-            &rays,
-            &built,
-            brute.as_ref(),
-            prims,
-            cfg,
-            pools,
-            progress,
-            res,
-        );
+        progress.set_message(format!(
+            "{}: {} brute-force reference",
+            scene.name,
+            set.name()
+        ));
+        let run = SetRun::new(scene, set, &rays, brute.as_ref(), cfg, pools, res);
+        run_set(run, &built, cfg, pools, progress, res);
     }
     built
-}
-
-/// The rays brute force verifies (all, or every k-th) and their reference results.
-fn brute_reference(
-    brute: &dyn TraceIndex,
-    query: Query,
-    rays: &[Ray],
-    prims: u64,
-    budget: u64,
-    pools: &Pools,
-) -> (Vec<usize>, BatchHits) {
-    let cost = rays.len() as u64 * prims;
-    let step = cost.div_ceil(budget.max(1)).max(1) as usize;
-    let ids: Vec<usize> = (0..rays.len()).step_by(step).collect();
-    let sample: Vec<Ray> = ids.iter().map(|&i| rays[i]).collect();
-    let pool = &pools.0.last().unwrap().1;
-    let (_, hits) = pool.install(|| counting_pass(brute, query, &sample));
-    (ids, hits)
-}
-
-#[allow(clippy::too_many_arguments)]
-fn run_set(
-    scene: &Scene,
-    set: RaySet,
-    rays: &[Ray],
-    built: &[Box<dyn TraceIndex>],
-    brute: &dyn TraceIndex,
-    prims: u64,
-    cfg: &SuiteConfig,
-    pools: &Pools,
-    progress: &ProgressBar,
-    res: &mut SuiteResult,
-) {
-    let query = set.query();
-    progress.set_message(format!(
-        "{}: {} brute-force reference",
-        scene.name,
-        set.name()
-    ));
-    let (ref_ids, ref_hits) = brute_reference(brute, query, rays, prims, cfg.verify_budget, pools);
-    let ref_rays: Vec<Ray> = ref_ids.iter().map(|&i| rays[i]).collect();
-    res.verification.push(Note {
-        scene: scene.name.clone(),
-        what: set.name().into(),
-        reason: if ref_ids.len() == rays.len() {
-            format!("all {} rays checked against brute force", rays.len())
-        } else {
-            format!(
-                "a sample of {} of {} rays (one in {}) checked against brute force",
-                ref_ids.len(),
-                rays.len(),
-                rays.len().div_ceil(ref_ids.len())
-            )
-        },
-    });
-    let all_pool = &pools.0.last().unwrap().1;
-    let mut first: Option<(String, BatchHits)> = None;
-    for index in built {
-        progress.set_message(format!("{}: {} {}", scene.name, set.name(), index.name()));
-        let is_brute = index.name() == "brute";
-        if is_brute && rays.len() as u64 * prims > cfg.brute_timing_budget {
-            note(
-                res,
-                scene,
-                format!("brute on {}", set.name()),
-                format!(
-                    "skipped: {} rays x {} primitives is over the brute-force budget of {}",
-                    rays.len(),
-                    prims,
-                    cfg.brute_timing_budget
-                ),
-            );
-            progress.inc(1);
-            continue;
-        }
-        let (counters, hits) = all_pool.install(|| counting_pass(index.as_ref(), query, rays));
-        let mut mismatches = 0usize;
-        let mut record = |against: &str, mut m: Vec<Mismatch>, res: &mut SuiteResult| {
-            if query == Query::Any {
-                m.iter_mut().for_each(|x| x.query = "any");
-            }
-            mismatches += m.len();
-            if is_peer(index.name()) {
-                res.peer_mismatch_total += m.len();
-            } else {
-                res.mismatch_total += m.len();
-            }
-            res.mismatches
-                .extend(
-                    m.into_iter()
-                        .take(KEEP_PER_PAIR)
-                        .map(|mismatch| MismatchRecord {
-                            scene: scene.name.clone(),
-                            index: index.name().to_owned(),
-                            ray_set: set,
-                            against: against.to_owned(),
-                            mismatch,
-                        }),
-                );
-        };
-        let sampled: BatchHits = ref_ids.iter().map(|&i| hits[i]).collect();
-        let mut vs_brute = compare_closest(&ref_rays, &ref_hits, &sampled);
-        for m in &mut vs_brute {
-            m.ray_index = ref_ids[m.ray_index];
-        }
-        record("brute", vs_brute, res);
-        // The first of our indices is the one all others are compared with on every ray.
-        match &first {
-            Some((name, h)) => record(name, compare_closest(rays, h, &hits), res),
-            None if !is_peer(index.name()) => first = Some((index.name().to_owned(), hits.clone())),
-            None => {}
-        }
-        let total: Counters = counters.iter().copied().sum();
-        let timings: Vec<(usize, Option<Timing>)> = if cfg.timed {
-            pools
-                .0
-                .iter()
-                .map(|(t, pool)| {
-                    let (timing, timed_hits) =
-                        pool.install(|| timed_pass(index.as_ref(), query, rays, cfg.repeats));
-                    record(
-                        "counting-pass",
-                        compare_closest(rays, &hits, &timed_hits),
-                        res,
-                    );
-                    (*t, Some(timing))
-                })
-                .collect()
-        } else {
-            vec![(cfg.threads.last().copied().unwrap_or(1), None)]
-        };
-        let n = rays.len() as f64;
-        let info = index.info();
-        let hit_count = hits.iter().flatten().count();
-        for (threads, timing) in timings {
-            let (median, spread) = timing.map_or((f64::NAN, f64::NAN), |t| {
-                (t.median.as_secs_f64(), t.spread.as_secs_f64())
-            });
-            res.rows.push(ResultRow {
-                scene: scene.name.clone(),
-                primitives: scene.len(),
-                index: index.name().to_owned(),
-                params: index.params().to_owned(),
-                ray_set: set.name().to_owned(),
-                rays: rays.len(),
-                threads,
-                build_ms: info.build_time.as_secs_f64() * 1e3,
-                memory_bytes: info.memory_bytes,
-                trace_ms_median: median * 1e3,
-                trace_ms_spread: spread * 1e3,
-                mrays_per_s: n / median / 1e6,
-                mtests_per_s: total.prim_tests as f64 / median / 1e6,
-                prim_tests_per_ray: total.prim_tests as f64 / n,
-                node_visits_per_ray: total.node_visits as f64 / n,
-                box_tests_per_ray: total.box_tests as f64 / n,
-                hits: hit_count,
-                mismatches,
-                brute_verified_rays: ref_ids.len(),
-                query: match query {
-                    Query::Closest => "closest",
-                    Query::Any => "any",
-                }
-                .into(),
-                kernel: cfg.kernel.name().into(),
-                repeats: if cfg.timed { cfg.repeats } else { 0 },
-            });
-        }
-        progress.inc(1);
-    }
 }
 
 /// Builds every index of `specs` on a tiny scene, so bad names and parameters fail before a long

@@ -10,10 +10,11 @@ use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum RayFileError {
-    #[error("cannot read or write {path}: {source}")]
+    #[error("cannot read or write {path}: {cause}")]
     Io {
         path: PathBuf,
-        source: std::io::Error,
+        /// In the message, not a chained source (so `{:#}` prints it once).
+        cause: std::io::Error,
     },
     #[error("{path}: size {size} bytes is not a multiple of {record} (one record per ray/hit)")]
     Size {
@@ -21,11 +22,12 @@ pub enum RayFileError {
         size: usize,
         record: usize,
     },
-    #[error("{path}: record {record} is not a valid ray: {source}")]
+    #[error("{path}: record {record} is not a valid ray: {cause}")]
     BadRay {
         path: PathBuf,
         record: usize,
-        source: RayError,
+        /// In the message, not a chained source (so `{:#}` prints it once).
+        cause: RayError,
     },
     #[error(
         "{path}: record {record} has prim {prim} with t = {t} (a miss must be +inf with 0xFFFFFFFF)"
@@ -41,7 +43,7 @@ pub enum RayFileError {
 fn read(path: &Path, record: usize) -> Result<Vec<u8>, RayFileError> {
     let bytes = std::fs::read(path).map_err(|source| RayFileError::Io {
         path: path.to_owned(),
-        source,
+        cause: source,
     })?;
     if bytes.len() % record != 0 {
         return Err(RayFileError::Size {
@@ -81,7 +83,7 @@ pub fn read_rays(path: &Path) -> Result<Vec<Ray>, RayFileError> {
             .map_err(|source| RayFileError::BadRay {
                 path: path.to_owned(),
                 record: i,
-                source,
+                cause: source,
             })
         })
         .collect()
@@ -100,7 +102,7 @@ fn write_all(
 ) -> Result<(), RayFileError> {
     let io = |source| RayFileError::Io {
         path: path.to_owned(),
-        source,
+        cause: source,
     };
     let file = std::fs::File::create(path).map_err(io)?;
     let mut w = BufWriter::new(file);

@@ -68,6 +68,19 @@ impl RenderOptions {
     }
 }
 
+// The causes are in the messages, not chained sources, so `{:#}` prints each once.
+impl From<CameraError> for RenderError {
+    fn from(e: CameraError) -> Self {
+        RenderError::Camera(e)
+    }
+}
+
+impl From<RayError> for RenderError {
+    fn from(e: RayError) -> Self {
+        RenderError::Ray(e)
+    }
+}
+
 /// Why a picture could not be made or written.
 #[derive(Debug, Error)]
 pub enum RenderError {
@@ -76,9 +89,9 @@ pub enum RenderError {
     )]
     Size(u32, u32),
     #[error("camera: {0}")]
-    Camera(#[from] CameraError),
+    Camera(CameraError),
     #[error("camera ray: {0}")]
-    Ray(#[from] RayError),
+    Ray(RayError),
     #[error("cannot write {path}: {message}")]
     Write { path: PathBuf, message: String },
 }

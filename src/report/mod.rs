@@ -4,8 +4,11 @@
 
 mod chart;
 mod csv_out;
+mod run_meta;
 pub mod scale_report;
+mod suite_plots;
 pub mod suite_report;
+pub mod sweep_report;
 
 pub use chart::{
     BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart, scatter_chart_with_lines,

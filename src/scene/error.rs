@@ -5,10 +5,11 @@ use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum SceneError {
-    #[error("cannot read {path}: {source}")]
+    #[error("cannot read {path}: {cause}")]
     Io {
         path: PathBuf,
-        source: std::io::Error,
+        /// In the message, not a chained source (so `{:#}` prints it once).
+        cause: std::io::Error,
     },
     #[error("{path} is not a valid OBJ file: {message}")]
     Obj { path: PathBuf, message: String },

@@ -6,7 +6,7 @@
 use crate::geometry::clip::triangle_clipped_bounds;
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
-use crate::geometry::triangle::{MollerTrumbore, Parametric, PlaneEdges, Watertight};
+use crate::geometry::triangle::{Exact, MollerTrumbore, Parametric, PlaneEdges, Watertight};
 use crate::geometry::{Aabb, Ray, Shape, Sphere, Triangle, TriangleKernel, TriangleKernelKind};
 use glam::Vec3A;
 use std::marker::PhantomData;
@@ -373,5 +373,6 @@ pub fn with_geometry<V: GeometryVisitor>(
         TriangleKernelKind::Parametric => pick::<Parametric, V>(data, v),
         TriangleKernelKind::MollerTrumbore => pick::<MollerTrumbore, V>(data, v),
         TriangleKernelKind::Watertight => pick::<Watertight, V>(data, v),
+        TriangleKernelKind::Exact => pick::<Exact, V>(data, v),
     }
 }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 pub fn meshes_in(dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
     let io = |source| SceneError::Io {
         path: dir.to_owned(),
-        source,
+        cause: source,
     };
     let entries = match std::fs::read_dir(dir) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),

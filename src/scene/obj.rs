@@ -1,5 +1,7 @@
 //! Wavefront OBJ loading (positions only) with tobj, plus a scan of every `v` line for the
-//! protocol's bounding box (which includes vertices no face uses) and for NaN/inf coordinates.
+//! protocol's bounding box (which includes vertices no face uses) and for NaN/inf coordinates,
+//! and of every `f` line for what tobj rejects or drops without a line number (indices out of
+//! range, faces of fewer than 3 vertices).
 
 use super::SceneError;
 use crate::geometry::{Aabb, Triangle};
@@ -19,9 +21,12 @@ pub struct ObjMesh {
 pub fn load_obj(path: &Path) -> Result<ObjMesh, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
         path: path.to_owned(),
-        source,
+        cause: source,
     })?;
-    let vertex_bounds = scan_vertices(path, &text)?;
+    // A UTF-8 byte-order mark (some Windows exporters write one) is not part of the first line.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let vertex_bounds = scan_vertices(path, text)?;
+    check_faces(path, text)?;
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -92,6 +97,46 @@ fn scan_vertices(path: &Path, text: &str) -> Result<Aabb, SceneError> {
     Ok(b)
 }
 
+/// Rejects, with the line, a face with fewer than 3 vertices (tobj drops it silently), a vertex
+/// reference that is not a number, and one out of range (1..=vertices, or -1..=-vertices
+/// relative to the vertices read so far). Line continuations (`\\`) are not supported.
+fn check_faces(path: &Path, text: &str) -> Result<(), SceneError> {
+    let mut vertices = 0i64;
+    for (n, line) in text.lines().enumerate() {
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("v") => vertices += 1,
+            Some("f") => {
+                let err = |what: String| SceneError::Obj {
+                    path: path.to_owned(),
+                    message: format!("line {}: {what} ('{}')", n + 1, line.trim()),
+                };
+                let refs: Vec<&str> = it.collect();
+                if refs.len() < 3 {
+                    return Err(err(format!(
+                        "a face needs at least 3 vertices, this one has {}; complete or remove it",
+                        refs.len()
+                    )));
+                }
+                for r in refs {
+                    let pos = r.split('/').next().unwrap_or("");
+                    let i: i64 = pos
+                        .parse()
+                        .map_err(|_| err(format!("'{r}' is not a vertex number")))?;
+                    let ok = (1..=vertices).contains(&i) || (-vertices..=-1).contains(&i);
+                    if !ok {
+                        return Err(err(format!(
+                            "vertex {i} does not exist: {vertices} vertices are defined before this line"
+                        )));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -140,5 +185,32 @@ mod tests {
         ));
         let bad_index = write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
         assert!(load_obj(bad_index.path()).is_err());
+    }
+
+    fn obj_message(text: &str) -> String {
+        match load_obj(write(text).path()) {
+            Err(SceneError::Obj { message, .. }) => message,
+            other => panic!("expected an OBJ error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn face_errors_name_their_line() {
+        let m = obj_message("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+        assert!(m.starts_with("line 5: vertex 9 does not exist"), "{m}");
+        let m = obj_message("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n");
+        assert!(m.starts_with("line 5: a face needs at least 3"), "{m}");
+        let m = obj_message("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 x 3\n");
+        assert!(m.starts_with("line 4: 'x' is not a vertex number"), "{m}");
+        let m = obj_message("v 0 0 0\nv 1 0 0\nf -1 -2 -3\n");
+        assert!(m.contains("vertex -3 does not exist"), "{m}");
+    }
+
+    #[test]
+    fn byte_order_mark_is_not_part_of_the_first_line() {
+        let f = write("\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -3 -2 -1\n");
+        let m = load_obj(f.path()).unwrap();
+        assert_eq!(m.triangles.len(), 2);
+        assert_eq!(m.vertex_bounds.min, Vec3A::ZERO);
     }
 }

@@ -15,7 +15,7 @@ use std::path::Path;
 pub fn write_obj(path: &Path, triangles: &[Triangle], comment: &str) -> Result<(), SceneError> {
     let io = |source| SceneError::Io {
         path: path.to_owned(),
-        source,
+        cause: source,
     };
     let mut w = BufWriter::new(std::fs::File::create(path).map_err(io)?);
     write_to(&mut w, triangles, comment)

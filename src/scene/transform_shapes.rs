@@ -16,7 +16,14 @@ pub enum ShapeTransformError {
     )]
     SkewedFrame(&'static str, [f64; 3]),
     #[error("the placed shape is invalid: {0}")]
-    Shape(#[from] ShapeError),
+    Shape(ShapeError),
+}
+
+/// The cause is in the message, not a chained source, so `{:#}` prints it once.
+impl From<ShapeError> for ShapeTransformError {
+    fn from(e: ShapeError) -> Self {
+        ShapeTransformError::Shape(e)
+    }
 }
 
 impl Transform {

@@ -383,6 +383,11 @@ pub fn all_cases(prims: usize, n: usize) -> Vec<Case> {
         TriangleKernelKind::PlaneEdges,
     ));
     cases.push(with_kernel(
+        &at_edges,
+        "vertices-and-edges-exact",
+        TriangleKernelKind::Exact,
+    ));
+    cases.push(with_kernel(
         &cells,
         "cell-boundaries-parametric",
         TriangleKernelKind::Parametric,

@@ -91,19 +91,20 @@ pub fn agreement_rays(scene: &Scene, n: usize) -> Vec<Ray> {
     rays
 }
 
-/// Asserts agreement with brute force on one scene and ray set, printing the first mismatches.
+/// Asserts agreement with brute force on one scene and ray set, with the watertight and the
+/// exact kernel, printing the first mismatches.
 pub fn assert_agrees(spec: &str, scene: &Scene, rays: &[Ray]) {
     let spec: IndexSpec = spec.parse().unwrap();
-    let m = verify_against_brute(
-        &spec,
-        &scene.geometry(),
-        TriangleKernelKind::Watertight,
-        rays,
-    )
-    .unwrap();
+    for kernel in [TriangleKernelKind::Watertight, TriangleKernelKind::Exact] {
+        assert_agrees_with(&spec, kernel, scene, rays);
+    }
+}
+
+fn assert_agrees_with(spec: &IndexSpec, kernel: TriangleKernelKind, scene: &Scene, rays: &[Ray]) {
+    let m = verify_against_brute(spec, &scene.geometry(), kernel, rays).unwrap();
     assert!(
         m.is_empty(),
-        "{spec} on {}: {} of {} rays mismatch, first: {}",
+        "{spec} ({kernel}) on {}: {} of {} rays mismatch, first: {}",
         scene.name,
         m.len(),
         rays.len(),

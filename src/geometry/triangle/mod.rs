@@ -1,15 +1,17 @@
-//! Triangles and the four ray–triangle kernels.
+//! Triangles and the five ray–triangle kernels.
 //!
 //! Every kernel is a pure function `(triangle, ray, t_max) -> Option<t>` that reports a hit only
 //! for `t` in the closed interval `[ray.t_min, t_max]`. The `t` it computes does not depend on
 //! `t_max` (only the acceptance does), so indices that pass a shrinking `t_max` get the same bits
 //! as brute force.
 
+pub mod exact;
 mod moller_trumbore;
 mod parametric;
 mod plane_edges;
 mod watertight;
 
+pub use exact::Exact;
 pub use moller_trumbore::MollerTrumbore;
 pub use parametric::Parametric;
 pub use plane_edges::PlaneEdges;
@@ -90,14 +92,16 @@ pub enum TriangleKernelKind {
     MollerTrumbore,
     #[default]
     Watertight,
+    Exact,
 }
 
 impl TriangleKernelKind {
-    pub const ALL: [TriangleKernelKind; 4] = [
+    pub const ALL: [TriangleKernelKind; 5] = [
         TriangleKernelKind::PlaneEdges,
         TriangleKernelKind::Parametric,
         TriangleKernelKind::MollerTrumbore,
         TriangleKernelKind::Watertight,
+        TriangleKernelKind::Exact,
     ];
 
     pub fn name(self) -> &'static str {
@@ -106,6 +110,7 @@ impl TriangleKernelKind {
             TriangleKernelKind::Parametric => Parametric::NAME,
             TriangleKernelKind::MollerTrumbore => MollerTrumbore::NAME,
             TriangleKernelKind::Watertight => Watertight::NAME,
+            TriangleKernelKind::Exact => Exact::NAME,
         }
     }
 
@@ -121,6 +126,7 @@ impl TriangleKernelKind {
             TriangleKernelKind::Parametric => Parametric::intersect(tri, ray, t_max),
             TriangleKernelKind::MollerTrumbore => MollerTrumbore::intersect(tri, ray, t_max),
             TriangleKernelKind::Watertight => Watertight::intersect(tri, ray, t_max),
+            TriangleKernelKind::Exact => Exact::intersect(tri, ray, t_max),
         }
     }
 }
@@ -150,7 +156,7 @@ mod tests {
         )
     }
 
-    fn all(ray: &Ray) -> [Option<f32>; 4] {
+    fn all(ray: &Ray) -> [Option<f32>; 5] {
         TriangleKernelKind::ALL.map(|k| k.intersect(&tri(), ray, ray.t_max))
     }
 

@@ -35,7 +35,7 @@ enum Object<'a> {
 pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
         path: path.to_owned(),
-        source,
+        cause: source,
     })?;
     let bad = |message: String| SceneError::SceneFile {
         path: path.to_owned(),

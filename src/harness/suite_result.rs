@@ -1,0 +1,71 @@
+//! What the suite produces: the rows of `results.csv`, the mismatches it kept, and notes on
+//! what it skipped and how it verified.
+
+use super::verify::Mismatch;
+use super::workload::RaySet;
+use serde::{Deserialize, Serialize};
+
+/// One row of `results.csv`: scene x index x ray set x threads.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct ResultRow {
+    pub scene: String,
+    pub primitives: usize,
+    pub index: String,
+    pub params: String,
+    pub ray_set: String,
+    pub rays: usize,
+    pub threads: usize,
+    pub build_ms: f64,
+    pub memory_bytes: usize,
+    pub trace_ms_median: f64,
+    pub trace_ms_spread: f64,
+    pub mrays_per_s: f64,
+    pub mtests_per_s: f64,
+    pub prim_tests_per_ray: f64,
+    pub node_visits_per_ray: f64,
+    pub box_tests_per_ray: f64,
+    /// Rays with a hit (closest-hit sets) or occluded (any-hit sets).
+    pub hits: usize,
+    /// Rays on which this index disagreed with brute force, the first index or itself.
+    pub mismatches: usize,
+    /// Rays compared with brute force (all rays, or the sample's size).
+    pub brute_verified_rays: usize,
+    pub query: String,
+    pub kernel: String,
+    pub repeats: usize,
+}
+
+/// A mismatch with where it happened.
+#[derive(Debug, Clone)]
+pub struct MismatchRecord {
+    pub scene: String,
+    pub index: String,
+    pub ray_set: RaySet,
+    /// What it was compared with: `brute`, another index's name, or `counting-pass`.
+    pub against: String,
+    pub mismatch: Mismatch,
+}
+
+/// Something the suite did not run, and why.
+#[derive(Debug, Clone, Serialize)]
+pub struct Note {
+    pub scene: String,
+    pub what: String,
+    pub reason: String,
+}
+
+/// Everything a run produced.
+#[derive(Debug, Default)]
+pub struct SuiteResult {
+    pub rows: Vec<ResultRow>,
+    /// Mismatch counts per (scene, index, set, against) are in the rows; the first few of each
+    /// are kept here with the ray's bits.
+    pub mismatches: Vec<MismatchRecord>,
+    /// Mismatching results of our indices: any fails the run.
+    pub mismatch_total: usize,
+    /// Mismatching results of peer indices ([`crate::index::is_peer`]): reported, not a failure.
+    pub peer_mismatch_total: usize,
+    pub notes: Vec<Note>,
+    /// Per scene and set: how brute-force verification covered the rays.
+    pub verification: Vec<Note>,
+}

@@ -1,0 +1,284 @@
+//! One ray set of one scene through every built index: brute force's reference, then per index
+//! a counting pass, the verification of its hits, the timed passes and the result rows.
+
+use super::suite::{Pools, SuiteConfig, note};
+use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
+use super::timing::{BatchHits, Query, Timing, counting_pass, timed_pass};
+use super::verify::{Mismatch, compare_closest};
+use super::workload::RaySet;
+use crate::geometry::Ray;
+use crate::index::{Counters, TraceIndex, is_peer};
+use crate::scene::Scene;
+use indicatif::ProgressBar;
+
+/// Mismatches kept per (scene, index, set, against) for the report.
+const KEEP_PER_PAIR: usize = 5;
+
+/// A ray set of a scene and what every index's hits are checked against.
+pub(super) struct SetRun<'a> {
+    pub scene: &'a Scene,
+    pub set: RaySet,
+    pub rays: &'a [Ray],
+    /// The rays brute force verifies (all, or every k-th) and its results on them.
+    ref_ids: Vec<usize>,
+    ref_rays: Vec<Ray>,
+    ref_hits: BatchHits,
+    /// The first of our indices (peers excluded): every later index is compared with it on
+    /// every ray.
+    first: Option<(String, BatchHits)>,
+}
+
+/// Counts one index's mismatches on one set and keeps the first few of each comparison.
+struct Tally<'a> {
+    scene: &'a str,
+    index: &'a str,
+    set: RaySet,
+    query: Query,
+    count: usize,
+}
+
+impl Tally<'_> {
+    fn record(&mut self, against: &str, mut m: Vec<Mismatch>, res: &mut SuiteResult) {
+        if self.query == Query::Any {
+            m.iter_mut().for_each(|x| x.query = "any");
+        }
+        self.count += m.len();
+        if is_peer(self.index) {
+            res.peer_mismatch_total += m.len();
+        } else {
+            res.mismatch_total += m.len();
+        }
+        res.mismatches.extend(
+            m.into_iter()
+                .take(KEEP_PER_PAIR)
+                .map(|mismatch| MismatchRecord {
+                    scene: self.scene.to_owned(),
+                    index: self.index.to_owned(),
+                    ray_set: self.set,
+                    against: against.to_owned(),
+                    mismatch,
+                }),
+        );
+    }
+}
+
+impl<'a> SetRun<'a> {
+    /// Traces brute force's reference on all rays, or on every k-th ray so that
+    /// `sample x primitives` fits `cfg.verify_budget`, and notes the coverage.
+    pub fn new(
+        scene: &'a Scene,
+        set: RaySet,
+        rays: &'a [Ray],
+        brute: &dyn TraceIndex,
+        cfg: &SuiteConfig,
+        pools: &Pools,
+        res: &mut SuiteResult,
+    ) -> SetRun<'a> {
+        let cost = rays.len() as u64 * scene.len() as u64;
+        let step = cost.div_ceil(cfg.verify_budget.max(1)).max(1) as usize;
+        let ref_ids: Vec<usize> = (0..rays.len()).step_by(step).collect();
+        let ref_rays: Vec<Ray> = ref_ids.iter().map(|&i| rays[i]).collect();
+        let (_, ref_hits) = pools
+            .all()
+            .install(|| counting_pass(brute, set.query(), &ref_rays));
+        res.verification.push(Note {
+            scene: scene.name.clone(),
+            what: set.name().into(),
+            reason: if ref_ids.len() == rays.len() {
+                format!("all {} rays checked against brute force", rays.len())
+            } else {
+                format!(
+                    "a sample of {} of {} rays (one in {}) checked against brute force",
+                    ref_ids.len(),
+                    rays.len(),
+                    rays.len().div_ceil(ref_ids.len())
+                )
+            },
+        });
+        SetRun {
+            scene,
+            set,
+            rays,
+            ref_ids,
+            ref_rays,
+            ref_hits,
+            first: None,
+        }
+    }
+
+    /// Compares an index's counting-pass hits with brute force's sample and with the first
+    /// index; the first of our indices becomes the reference for the later ones.
+    fn verify(
+        &mut self,
+        index: &dyn TraceIndex,
+        hits: &BatchHits,
+        t: &mut Tally,
+        res: &mut SuiteResult,
+    ) {
+        let sampled: BatchHits = self.ref_ids.iter().map(|&i| hits[i]).collect();
+        let mut vs_brute = compare_closest(&self.ref_rays, &self.ref_hits, &sampled);
+        for m in &mut vs_brute {
+            m.ray_index = self.ref_ids[m.ray_index];
+        }
+        t.record("brute", vs_brute, res);
+        match &self.first {
+            Some((name, h)) => t.record(name, compare_closest(self.rays, h, hits), res),
+            None if !is_peer(index.name()) => {
+                self.first = Some((index.name().to_owned(), hits.clone()))
+            }
+            None => {}
+        }
+    }
+}
+
+/// Whether brute force is too slow to time on this set (noted in the result if so).
+fn brute_over_budget(
+    run: &SetRun,
+    index: &dyn TraceIndex,
+    cfg: &SuiteConfig,
+    res: &mut SuiteResult,
+) -> bool {
+    let prims = run.scene.len() as u64;
+    if index.name() != "brute" || run.rays.len() as u64 * prims <= cfg.brute_timing_budget {
+        return false;
+    }
+    note(
+        res,
+        run.scene,
+        format!("brute on {}", run.set.name()),
+        format!(
+            "skipped: {} rays x {} primitives is over the brute-force budget of {}",
+            run.rays.len(),
+            prims,
+            cfg.brute_timing_budget
+        ),
+    );
+    true
+}
+
+/// The timed passes at every thread count (each checked against the counting pass), or one
+/// untimed entry at the largest count when the run does not time.
+fn timed_passes(
+    run: &SetRun,
+    index: &dyn TraceIndex,
+    counted: &BatchHits,
+    cfg: &SuiteConfig,
+    pools: &Pools,
+    t: &mut Tally,
+    res: &mut SuiteResult,
+) -> Vec<(usize, Option<Timing>)> {
+    if !cfg.timed {
+        return vec![(cfg.threads.last().copied().unwrap_or(1), None)];
+    }
+    pools
+        .0
+        .iter()
+        .map(|(threads, pool)| {
+            let (timing, timed_hits) =
+                pool.install(|| timed_pass(index, run.set.query(), run.rays, cfg.repeats));
+            t.record(
+                "counting-pass",
+                compare_closest(run.rays, counted, &timed_hits),
+                res,
+            );
+            (*threads, Some(timing))
+        })
+        .collect()
+}
+
+/// Runs every built index on one ray set and appends its rows to `res`.
+pub(super) fn run_set(
+    mut run: SetRun,
+    built: &[Box<dyn TraceIndex>],
+    cfg: &SuiteConfig,
+    pools: &Pools,
+    progress: &ProgressBar,
+    res: &mut SuiteResult,
+) {
+    let query = run.set.query();
+    for index in built {
+        let index = index.as_ref();
+        progress.set_message(format!(
+            "{}: {} {}",
+            run.scene.name,
+            run.set.name(),
+            index.name()
+        ));
+        if brute_over_budget(&run, index, cfg, res) {
+            progress.inc(1);
+            continue;
+        }
+        let (counters, hits) = pools
+            .all()
+            .install(|| counting_pass(index, query, run.rays));
+        let mut tally = Tally {
+            scene: &run.scene.name,
+            index: index.name(),
+            set: run.set,
+            query,
+            count: 0,
+        };
+        run.verify(index, &hits, &mut tally, res);
+        let timings = timed_passes(&run, index, &hits, cfg, pools, &mut tally, res);
+        let counts = SetCounts {
+            total: counters.iter().copied().sum(),
+            hits: hits.iter().flatten().count(),
+            mismatches: tally.count,
+        };
+        for (threads, timing) in timings {
+            res.rows
+                .push(result_row(&run, index, &counts, threads, timing, cfg));
+        }
+        progress.inc(1);
+    }
+}
+
+/// What the counting pass and verification found for one index on one set.
+struct SetCounts {
+    total: Counters,
+    hits: usize,
+    mismatches: usize,
+}
+
+fn result_row(
+    run: &SetRun,
+    index: &dyn TraceIndex,
+    c: &SetCounts,
+    threads: usize,
+    timing: Option<Timing>,
+    cfg: &SuiteConfig,
+) -> ResultRow {
+    let n = run.rays.len() as f64;
+    let info = index.info();
+    let (median, spread) = timing.map_or((f64::NAN, f64::NAN), |t| {
+        (t.median.as_secs_f64(), t.spread.as_secs_f64())
+    });
+    ResultRow {
+        scene: run.scene.name.clone(),
+        primitives: run.scene.len(),
+        index: index.name().to_owned(),
+        params: index.params().to_owned(),
+        ray_set: run.set.name().to_owned(),
+        rays: run.rays.len(),
+        threads,
+        build_ms: info.build_time.as_secs_f64() * 1e3,
+        memory_bytes: info.memory_bytes,
+        trace_ms_median: median * 1e3,
+        trace_ms_spread: spread * 1e3,
+        mrays_per_s: n / median / 1e6,
+        mtests_per_s: c.total.prim_tests as f64 / median / 1e6,
+        prim_tests_per_ray: c.total.prim_tests as f64 / n,
+        node_visits_per_ray: c.total.node_visits as f64 / n,
+        box_tests_per_ray: c.total.box_tests as f64 / n,
+        hits: c.hits,
+        mismatches: c.mismatches,
+        brute_verified_rays: run.ref_ids.len(),
+        query: match run.set.query() {
+            Query::Closest => "closest",
+            Query::Any => "any",
+        }
+        .into(),
+        kernel: cfg.kernel.name().into(),
+        repeats: if cfg.timed { cfg.repeats } else { 0 },
+    }
+}

@@ -1,0 +1,158 @@
+//! The suite report's SVG charts: Mrays/s and tests per ray per ray set, build time, memory and
+//! thread scaling.
+
+use super::run_meta::RunMeta;
+use super::{BarGroup, Chart, ReportError, Series, bar_chart, line_chart};
+use crate::harness::suite::ResultRow;
+use std::path::Path;
+
+/// Scenes in first-seen order.
+pub(super) fn scenes(rows: &[ResultRow]) -> Vec<&str> {
+    let mut v: Vec<&str> = Vec::new();
+    for r in rows {
+        if !v.contains(&r.scene.as_str()) {
+            v.push(&r.scene);
+        }
+    }
+    v
+}
+
+pub(super) fn uniq<'a>(rows: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut v: Vec<&str> = Vec::new();
+    for r in rows {
+        if !v.contains(&r) {
+            v.push(r);
+        }
+    }
+    v
+}
+
+/// Bar groups (one per scene) of `value` for the rows `keep` selects, one bar per index.
+fn groups(
+    rows: &[ResultRow],
+    keep: impl Fn(&ResultRow) -> bool,
+    value: impl Fn(&ResultRow) -> f64,
+) -> Vec<BarGroup> {
+    scenes(rows)
+        .into_iter()
+        .map(|s| BarGroup {
+            name: s.to_owned(),
+            bars: rows
+                .iter()
+                .filter(|r| r.scene == s && keep(r))
+                .map(|r| (r.index.clone(), value(r)))
+                .collect(),
+        })
+        .filter(|g| !g.bars.is_empty())
+        .collect()
+}
+
+/// Draws every plot; returns `(title, file name)` of those written.
+pub(super) fn write_plots(
+    dir: &Path,
+    meta: &RunMeta,
+    rows: &[ResultRow],
+) -> Result<Vec<(String, String)>, ReportError> {
+    let mut out = Vec::new();
+    let min_threads = meta.config.threads.iter().copied().min().unwrap_or(1);
+    let mut draw = |title: String, file: String, y: &str, log_y: bool, g: Vec<BarGroup>| {
+        if g.is_empty() {
+            return Ok::<(), ReportError>(());
+        }
+        let mut c = Chart::new(&title, "scene", y);
+        c.log_y = log_y;
+        match bar_chart(&dir.join(&file), &c, &g) {
+            Ok(()) | Err(ReportError::NoData(_)) => {}
+            Err(e) => return Err(e),
+        }
+        out.push((title, file));
+        Ok(())
+    };
+    let sets = uniq(rows.iter().map(|r| r.ray_set.as_str()));
+    for set in &sets {
+        draw(
+            format!("{set} rays: Mrays/s on {min_threads} thread(s)"),
+            format!("mrays_{set}.svg"),
+            "Mrays/s (log)",
+            true,
+            groups(
+                rows,
+                |r| r.ray_set == *set && r.threads == min_threads,
+                |r| r.mrays_per_s,
+            ),
+        )?;
+    }
+    let first_row = |r: &ResultRow| {
+        r.ray_set == rows[0].ray_set && r.threads == rows[0].threads && r.index != "brute"
+    };
+    draw(
+        "Build time per index".into(),
+        "build_ms.svg".into(),
+        "build time, ms (log)",
+        true,
+        groups(rows, first_row, |r| r.build_ms),
+    )?;
+    draw(
+        "Memory per index".into(),
+        "memory.svg".into(),
+        "bytes per primitive (log)",
+        true,
+        groups(rows, first_row, |r| {
+            r.memory_bytes as f64 / r.primitives.max(1) as f64
+        }),
+    )?;
+    for set in &sets {
+        draw(
+            format!("{set} rays: primitive tests per ray"),
+            format!("tests_per_ray_{set}.svg"),
+            "primitive tests per ray (log)",
+            true,
+            groups(
+                rows,
+                |r| r.ray_set == *set && r.threads == min_threads,
+                |r| r.prim_tests_per_ray,
+            ),
+        )?;
+    }
+    // Thread scaling: geometric mean over scenes and sets of rate(t) / rate(min threads).
+    let threads = uniq_threads(rows);
+    if threads.len() > 1 {
+        let mut series = Vec::new();
+        for index in uniq(rows.iter().map(|r| r.index.as_str())) {
+            let mut pts = Vec::new();
+            for &t in &threads {
+                let ratios: Vec<f64> = rows
+                    .iter()
+                    .filter(|r| r.index == index && r.threads == t)
+                    .filter_map(|r| {
+                        let base = rows.iter().find(|b| {
+                            b.index == r.index
+                                && b.scene == r.scene
+                                && b.ray_set == r.ray_set
+                                && b.threads == min_threads
+                        })?;
+                        let q = r.mrays_per_s / base.mrays_per_s;
+                        q.is_finite().then_some(q.ln())
+                    })
+                    .collect();
+                if !ratios.is_empty() {
+                    let g = (ratios.iter().sum::<f64>() / ratios.len() as f64).exp();
+                    pts.push((t as f64, g));
+                }
+            }
+            series.push(Series::new(index, pts));
+        }
+        let title = "Thread scaling (geometric mean over scenes and ray sets)";
+        let c = Chart::new(title, "threads", "speed-up over the fewest threads");
+        line_chart(&dir.join("thread_scaling.svg"), &c, &series)?;
+        out.push((title.into(), "thread_scaling.svg".into()));
+    }
+    Ok(out)
+}
+
+pub(super) fn uniq_threads(rows: &[ResultRow]) -> Vec<usize> {
+    let mut t: Vec<usize> = rows.iter().map(|r| r.threads).collect();
+    t.sort_unstable();
+    t.dedup();
+    t
+}
