@@ -12,7 +12,6 @@ mod common;
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_indices;
 use accelbench::index::{IndexSpec, build_index, index_names, is_peer};
-use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::Scene;
 
 /// Rays per agreement scene (the most any index's own test used before).
@@ -37,18 +36,7 @@ fn assert_every_index_agrees(scene: &Scene, kernel: TriangleKernelKind, rays: &[
             }
             continue;
         }
-        assert!(
-            m.is_empty(),
-            "{name} ({kernel}) on {}: {} of {} rays mismatch, first: {}",
-            scene.name,
-            m.len(),
-            rays.len(),
-            m.iter()
-                .take(3)
-                .map(|m| m.to_string())
-                .collect::<Vec<_>>()
-                .join("\n")
-        );
+        common::assert_no_mismatch(&format!("{name} ({kernel})"), scene, rays.len(), &m);
     }
 }
 
@@ -68,9 +56,7 @@ fn every_index_agrees_on_the_bunny_protocol_rays() {
         eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
         return;
     };
-    let b = bunny.ray_set_bounds();
-    let mut rays = primary_rays(&b, 48, 48).unwrap();
-    rays.extend(incoherent_rays(&b, 2000, 42));
+    let mut rays = common::bunny_protocol_sample(&bunny);
     rays.extend(common::agreement_rays(&bunny, 2000));
     assert_every_index_agrees(&bunny, TriangleKernelKind::Watertight, &rays);
 }

@@ -7,7 +7,7 @@ use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;
 use accelbench::index::bvh::{MAX_DEPTH, Preset};
 use accelbench::index::{BuildError, Counters, IndexSpec, TraceIndex, build_index};
-use accelbench::rays::{incoherent_rays, primary_rays};
+use accelbench::rays::incoherent_rays;
 use accelbench::scene::{Scene, generators};
 use common::{agreement_rays, agreement_scenes};
 use glam::{Vec3, Vec3A};
@@ -79,9 +79,7 @@ fn every_preset_agrees_on_the_bunny() {
         eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
         return;
     };
-    let b = bunny.ray_set_bounds();
-    let mut rays = primary_rays(&b, 48, 48).unwrap();
-    rays.extend(incoherent_rays(&b, 2000, 42));
+    let rays = common::bunny_protocol_sample(&bunny);
     assert_all_agree(&preset_specs(), &bunny, &rays);
 }
 

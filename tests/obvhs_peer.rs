@@ -9,7 +9,6 @@ mod common;
 use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;
 use accelbench::index::{IndexSpec, TraceIndex, build_index, peer_names};
-use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::Scene;
 use common::{agreement_rays, agreement_scenes};
 
@@ -63,9 +62,7 @@ fn peers_agree_on_bunny_protocol_rays() {
         eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
         return;
     };
-    let b = bunny.ray_set_bounds();
-    let mut rays = primary_rays(&b, 48, 48).unwrap();
-    rays.extend(incoherent_rays(&b, 2000, 42));
+    let rays = common::bunny_protocol_sample(&bunny);
     let expected = closest(build("brute", &bunny).as_ref(), &rays);
     for spec in peer_names() {
         let index = build(spec, &bunny);

@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
-use accelbench::harness::verify::verify_against_brute;
+use accelbench::harness::verify::{Mismatch, verify_against_brute};
 use accelbench::index::IndexSpec;
 use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::{Scene, generators};
@@ -102,16 +102,29 @@ pub fn assert_agrees(spec: &str, scene: &Scene, rays: &[Ray]) {
 
 fn assert_agrees_with(spec: &IndexSpec, kernel: TriangleKernelKind, scene: &Scene, rays: &[Ray]) {
     let m = verify_against_brute(spec, &scene.geometry(), kernel, rays).unwrap();
+    assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
+}
+
+/// Fails with the first three mismatches when `m` is not empty (`what`: index and kernel).
+pub fn assert_no_mismatch(what: &str, scene: &Scene, rays: usize, m: &[Mismatch]) {
     assert!(
         m.is_empty(),
-        "{spec} ({kernel}) on {}: {} of {} rays mismatch, first: {}",
+        "{what} on {}: {} of {rays} rays mismatch, first: {}",
         scene.name,
         m.len(),
-        rays.len(),
         m.iter()
             .take(3)
             .map(|m| m.to_string())
             .collect::<Vec<_>>()
             .join("\n")
     );
+}
+
+/// The small protocol sample the bunny tests share: 48 x 48 primary rays and 2000 incoherent
+/// rays (seed 42).
+pub fn bunny_protocol_sample(bunny: &Scene) -> Vec<Ray> {
+    let b = bunny.ray_set_bounds();
+    let mut rays = primary_rays(&b, 48, 48).unwrap();
+    rays.extend(incoherent_rays(&b, 2000, 42));
+    rays
 }
