@@ -150,7 +150,9 @@ impl Prims {
         match self {
             Prims::Tris(t) => reference::triangle(&t[prim], ray),
             Prims::Spheres(s) => reference::sphere(&s[prim], ray),
-            Prims::Shapes { shapes, kernel } => shapes_f64::reference(*kernel, &shapes[prim], ray),
+            Prims::Shapes { shapes, kernel } => {
+                shapes_f64::reference(*kernel == Kernel::BoxFrontPlanes, &shapes[prim], ray)
+            }
         }
     }
 
@@ -193,7 +195,13 @@ pub fn kernel_closest(
             }
             (Prims::Shapes { shapes, .. }, Precision::F64) => {
                 let mut doubt = shapes_f64::Doubt::default();
-                shapes_f64::mirror(kernel, &shapes[i], r64, f64::INFINITY, &mut doubt)
+                shapes_f64::mirror(
+                    kernel == Kernel::BoxFrontPlanes,
+                    &shapes[i],
+                    r64,
+                    f64::INFINITY,
+                    &mut doubt,
+                )
             }
         };
         if let Some(t) = t
@@ -337,7 +345,14 @@ fn one_pass(
         (Prims::Shapes { shapes, .. }, Precision::F32) => time_shapes(kernel, shapes, rays),
         (Prims::Shapes { shapes, .. }, Precision::F64) => count_hits(shapes, r64, |p, r| {
             let mut doubt = shapes_f64::Doubt::default();
-            shapes_f64::mirror(kernel, p, r, f64::INFINITY, &mut doubt).is_some()
+            shapes_f64::mirror(
+                kernel == Kernel::BoxFrontPlanes,
+                p,
+                r,
+                f64::INFINITY,
+                &mut doubt,
+            )
+            .is_some()
         }),
     }
 }

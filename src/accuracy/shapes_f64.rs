@@ -13,7 +13,6 @@
 //! answer lies within that bound the ray is [`Reference::Unverifiable`] and is left out of the
 //! rates (as the triangle reference does when an exact difference is not available).
 
-use super::kernels::Kernel;
 use super::kernels_f64::Ray64;
 use super::reference::Reference;
 use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
@@ -22,7 +21,6 @@ use glam::{DMat3, DVec3, Vec3A};
 
 /// How many `f64` ulps of the magnitudes involved a decision must clear to be trusted.
 pub const DOUBT_ULPS: f64 = 64.0;
-
 const TOL: f64 = DOUBT_ULPS * f64::EPSILON;
 
 /// The `f64` rim slack (the mirror of `geometry::shapes::cylinder::RIM_SLACK`).
@@ -80,16 +78,16 @@ fn settle(cands: &[Cand], ray: &Ray64, t_max: f64, doubt: &mut Doubt) -> Option<
     (best.is_finite() && best <= t_max).then_some(best)
 }
 
-/// The mirror of the shape's kernel named by `kernel` (the box takes either of its two).
+/// The mirror of the shape's kernel (a box by its front planes if `box_front_planes`, else slabs).
 pub fn mirror(
-    kernel: Kernel,
+    box_front_planes: bool,
     shape: &Shape,
     ray: &Ray64,
     t_max: f64,
     d: &mut Doubt,
 ) -> Option<f64> {
-    match (kernel, shape) {
-        (Kernel::BoxFrontPlanes, Shape::Box(b)) => box_front_planes(b, ray, t_max, d),
+    match (box_front_planes, shape) {
+        (true, Shape::Box(b)) => self::box_front_planes(b, ray, t_max, d),
         (_, Shape::Box(b)) => box_slabs(b, ray, t_max, d),
         (_, Shape::ConvexPolygon(p)) => convex_polygon(p, ray, t_max, d),
         (_, Shape::ConcavePolygon(p)) => concave_polygon(p, ray, t_max, d),
@@ -101,10 +99,10 @@ pub fn mirror(
 
 /// The reference for one ray against one shape: the mirror over `[0, +inf]`, or
 /// [`Reference::Unverifiable`] when one of its decisions is within its rounding bound.
-pub fn reference(kernel: Kernel, shape: &Shape, ray: &Ray) -> Reference {
+pub fn reference(box_front_planes: bool, shape: &Shape, ray: &Ray) -> Reference {
     let r = Ray64::from_ray(ray);
     let mut doubt = Doubt::default();
-    let hit = mirror(kernel, shape, &r, f64::INFINITY, &mut doubt);
+    let hit = mirror(box_front_planes, shape, &r, f64::INFINITY, &mut doubt);
     match (doubt.0, hit) {
         (true, _) => Reference::Unverifiable,
         (false, Some(t)) => Reference::Hit(t),
@@ -448,241 +446,5 @@ pub fn ellipsoid(e: &Ellipsoid, ray: &Ray64, t_max: f64, doubt: &mut Doubt) -> O
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::shapes::obb;
-    use glam::{Mat3A, Vec3};
-
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap()
-    }
-
-    fn shapes() -> Vec<(Kernel, Shape)> {
-        let tilt = Mat3A::from_axis_angle(Vec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
-        let b = Obb::new(Vec3A::new(0.2, 0.1, 4.0), Vec3A::new(0.7, 0.5, 0.9), tilt).unwrap();
-        let square = |z: f32| {
-            vec![
-                Vec3A::new(-1.0, -1.0, z),
-                Vec3A::new(1.0, -1.0, z),
-                Vec3A::new(1.0, 1.0, z),
-                Vec3A::new(-1.0, 1.0, z),
-            ]
-        };
-        let mut ell = square(4.0);
-        ell.insert(2, Vec3A::new(0.0, 0.0, 4.0));
-        vec![
-            (Kernel::BoxSlabs, Shape::Box(b)),
-            (Kernel::BoxFrontPlanes, Shape::Box(b)),
-            (
-                Kernel::ConvexPolygon,
-                Shape::ConvexPolygon(Polygon::convex(square(4.0)).unwrap()),
-            ),
-            (
-                Kernel::ConcavePolygon,
-                Shape::ConcavePolygon(Polygon::new(ell).unwrap()),
-            ),
-            (
-                Kernel::Cylinder,
-                Shape::Cylinder(
-                    Cylinder::new(Vec3A::new(0.0, -0.5, 3.0), Vec3A::new(0.3, 0.6, 5.0), 0.8)
-                        .unwrap(),
-                ),
-            ),
-            (
-                Kernel::Cone,
-                Shape::Cone(
-                    Cone::new(Vec3A::new(0.1, 0.0, 3.0), Vec3A::new(-0.2, 0.3, 5.0), 1.0).unwrap(),
-                ),
-            ),
-            (
-                Kernel::Ellipsoid,
-                Shape::Ellipsoid(
-                    Ellipsoid::new(Vec3A::new(0.0, 0.2, 4.0), Vec3A::new(1.0, 0.6, 0.4), tilt)
-                        .unwrap(),
-                ),
-            ),
-        ]
-    }
-
-    fn f32_kernel(k: Kernel, s: &Shape, r: &Ray) -> Option<f32> {
-        match (k, s) {
-            (Kernel::BoxFrontPlanes, Shape::Box(b)) => obb::intersect_front_planes(b, r, r.t_max),
-            _ => s.intersect(r, r.t_max),
-        }
-    }
-
-    /// On rays well away from every edge, rim and tangent each mirror agrees with its `f32`
-    /// original on hit or miss, to `f32` precision on `t`, and is certain of its answer.
-    #[test]
-    fn mirrors_agree_with_the_f32_kernels_on_easy_rays() {
-        let mut hits = [0usize; 7];
-        let mut misses = [0usize; 7];
-        for (i, (k, s)) in shapes().iter().enumerate() {
-            for (o, d) in [
-                ([0.05, 0.1, 0.0], [0.0, 0.0, 1.0]),
-                ([0.0, 0.0, 0.0], [0.03, 0.05, 1.0]),
-                ([0.1, -0.1, 9.0], [0.01, 0.02, -1.0]),
-                ([5.0, 5.0, 0.0], [0.0, 0.0, 1.0]),
-                ([0.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
-                ([-4.0, 0.1, 4.1], [1.0, 0.0, 0.0]),
-            ] {
-                let r = ray(o, d);
-                let a = f32_kernel(*k, s, &r);
-                let mut doubt = Doubt::default();
-                let b = mirror(*k, s, &Ray64::from_ray(&r), f64::INFINITY, &mut doubt);
-                assert!(!doubt.0, "{k:?} doubts an easy ray {o:?} {d:?}");
-                assert_eq!(
-                    a.is_some(),
-                    b.is_some(),
-                    "{k:?} {o:?} {d:?}: {a:?} vs {b:?}"
-                );
-                if let (Some(a), Some(b)) = (a, b) {
-                    assert!((a as f64 - b).abs() <= 1e-5 * b.abs(), "{k:?}: {a} vs {b}");
-                    hits[i] += 1;
-                } else {
-                    misses[i] += 1;
-                }
-            }
-        }
-        assert!(hits.iter().all(|&h| h >= 2), "{hits:?}");
-        assert!(misses.iter().all(|&m| m >= 2), "{misses:?}");
-    }
-
-    /// One hand-checked hit per mirror, and one ray through an edge, rim or tangent that the
-    /// reference must call unverifiable.
-    #[test]
-    fn hand_checked_cases() {
-        let check = |k: Kernel, s: Shape, r: Ray, t: f64| {
-            let Reference::Hit(got) = reference(k, &s, &r) else {
-                panic!("{k:?}: {:?}", reference(k, &s, &r))
-            };
-            assert!((got - t).abs() <= 1e-12 * t, "{k:?}: {got} vs {t}");
-        };
-        // Unit cube at (0, 0, 5) turned 90 degrees about z (still the same cube): from the
-        // origin along +z it enters z = 4.5; from inside it exits at y = 0.5.
-        let cube = Shape::Box(
-            Obb::new(
-                Vec3A::new(0.0, 0.0, 5.0),
-                Vec3A::splat(0.5),
-                Mat3A::from_rotation_z(std::f32::consts::FRAC_PI_2),
-            )
-            .unwrap(),
-        );
-        for k in [Kernel::BoxSlabs, Kernel::BoxFrontPlanes] {
-            check(k, cube.clone(), ray([0.1, 0.2, 0.0], [0.0, 0.0, 2.0]), 2.25);
-            check(k, cube.clone(), ray([0.0, 0.0, 5.0], [0.0, 1.0, 0.0]), 0.5);
-            // Touching only the edge x = 0.5, z = 4.5 of the axis-aligned cube (the line
-            // x - z = -4 of the plane y = 0).
-            let aligned = Shape::Box(
-                Obb::new(
-                    Vec3A::new(0.0, 0.0, 5.0),
-                    Vec3A::splat(0.5),
-                    Mat3A::IDENTITY,
-                )
-                .unwrap(),
-            );
-            assert_eq!(
-                reference(k, &aligned, &ray([-1.0, 0.0, 3.0], [1.0, 0.0, 1.0])),
-                Reference::Unverifiable,
-                "{k:?}"
-            );
-        }
-        // The square |x|, |y| <= 1 at z = 4, as a convex and as a concave polygon: a hit at
-        // t = 4, a miss beside it, and a ray through its edge x = 1: unverifiable.
-        let square = vec![
-            Vec3A::new(-1.0, -1.0, 4.0),
-            Vec3A::new(1.0, -1.0, 4.0),
-            Vec3A::new(1.0, 1.0, 4.0),
-            Vec3A::new(-1.0, 1.0, 4.0),
-        ];
-        let convex = Shape::ConvexPolygon(Polygon::convex(square.clone()).unwrap());
-        let concave = Shape::ConcavePolygon(Polygon::new(square).unwrap());
-        for (k, s) in [
-            (Kernel::ConvexPolygon, convex),
-            (Kernel::ConcavePolygon, concave),
-        ] {
-            check(k, s.clone(), ray([0.5, 0.25, 0.0], [0.0, 0.0, 1.0]), 4.0);
-            assert_eq!(
-                reference(k, &s, &ray([3.0, 0.5, 4.0], [0.0, 0.0, 1.0])),
-                Reference::Miss,
-                "{k:?}: beside"
-            );
-            assert_eq!(
-                reference(k, &s, &ray([1.0, 0.5, 0.0], [0.0, 0.0, 1.0])),
-                Reference::Unverifiable,
-                "{k:?}"
-            );
-        }
-        // Cylinder of radius 1 around z from z = 2 to z = 6: the side at x = -1 from x = -5
-        // (t = 4), the bottom cap from below (t = 2), a line touching only the rim: unverifiable.
-        let cyl = Shape::Cylinder(
-            Cylinder::new(Vec3A::new(0.0, 0.0, 2.0), Vec3A::new(0.0, 0.0, 6.0), 1.0).unwrap(),
-        );
-        check(
-            Kernel::Cylinder,
-            cyl.clone(),
-            ray([-5.0, 0.0, 3.0], [1.0, 0.0, 0.0]),
-            4.0,
-        );
-        check(
-            Kernel::Cylinder,
-            cyl.clone(),
-            ray([0.5, 0.0, 0.0], [0.0, 0.0, 1.0]),
-            2.0,
-        );
-        assert_eq!(
-            reference(
-                Kernel::Cylinder,
-                &cyl,
-                &ray([-2.0, 0.0, 3.0], [1.0, 0.0, -1.0])
-            ),
-            Reference::Unverifiable
-        );
-        // Cone with apex (0, 0, 2), base radius 2 at z = 4 (slope 1): along -x at z = 3 the side
-        // is at x = 1 (t = 4 from x = 5); straight up the axis, the base at t = 4; through the
-        // apex exactly: unverifiable.
-        let cone = Shape::Cone(
-            Cone::new(Vec3A::new(0.0, 0.0, 4.0), Vec3A::new(0.0, 0.0, 2.0), 2.0).unwrap(),
-        );
-        check(
-            Kernel::Cone,
-            cone.clone(),
-            ray([5.0, 0.0, 3.0], [-1.0, 0.0, 0.0]),
-            4.0,
-        );
-        check(
-            Kernel::Cone,
-            cone.clone(),
-            ray([0.0, 0.5, 8.0], [0.0, 0.0, -1.0]),
-            4.0,
-        );
-        assert_eq!(
-            reference(Kernel::Cone, &cone, &ray([-0.5, 0.0, 1.0], [0.5, 0.0, 1.0])),
-            Reference::Unverifiable
-        );
-        // Ellipsoid radii (2, 1, 0.5) at (0, 0, 5): along +z at x = 1 it enters at
-        // z = 5 - 0.5 sqrt(3/4); along x at y = 1 exactly tangent: unverifiable.
-        let e = Shape::Ellipsoid(
-            Ellipsoid::new(
-                Vec3A::new(0.0, 0.0, 5.0),
-                Vec3A::new(2.0, 1.0, 0.5),
-                Mat3A::IDENTITY,
-            )
-            .unwrap(),
-        );
-        check(
-            Kernel::Ellipsoid,
-            e.clone(),
-            ray([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-            5.0 - 0.5 * 0.75f64.sqrt(),
-        );
-        assert_eq!(
-            reference(
-                Kernel::Ellipsoid,
-                &e,
-                &ray([-5.0, 1.0, 5.0], [1.0, 0.0, 0.0])
-            ),
-            Reference::Unverifiable
-        );
-    }
-}
+#[path = "shapes_f64_tests.rs"]
+mod tests;
