@@ -1,6 +1,6 @@
 //! Finite, capped, arbitrarily oriented right circular cones.
 
-use super::cylinder::RIM_SLACK;
+use super::axial::{AxialRay, axis_segment, split};
 use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
 use crate::geometry::{Aabb, Ray};
 use glam::Vec3A;
@@ -25,20 +25,11 @@ pub struct Cone {
 impl Cone {
     /// The cone from its base centre to its apex.
     pub fn new(base: Vec3A, apex: Vec3A, radius: f32) -> Result<Cone, ShapeError> {
-        if !(base.is_finite() && apex.is_finite()) {
-            return Err(ShapeError::NonFinite("cone base and apex"));
-        }
-        if !(radius.is_finite() && radius > 0.0) {
-            return Err(ShapeError::NotPositive("cone radius", radius));
-        }
-        let height = (base - apex).length();
-        if !(height.is_finite() && height > 0.0) {
-            return Err(ShapeError::ZeroLength("cone"));
-        }
+        let (axis, height) = axis_segment(apex, base, radius, ["cone", "cone radius"])?;
         let k = radius / height;
         let mut shape = Cone {
             apex,
-            axis: (base - apex) / height,
+            axis,
             height,
             radius,
             k2: k * k,
@@ -84,9 +75,7 @@ impl Cone {
     /// the side's, `radial * height - axis * radius` normalized (perpendicular to the line from
     /// the apex to the rim).
     pub fn normal_at(&self, p: Vec3A) -> Vec3A {
-        let q = p - self.apex;
-        let z = q.dot(self.axis);
-        let radial = q - self.axis * z;
+        let (z, radial) = split(p - self.apex, self.axis);
         let r = radial.length();
         // Distance to the side line in the axial half-plane of p.
         let to_side = (r * self.height - z * self.radius).abs() / self.height.hypot(self.radius);
@@ -111,9 +100,8 @@ impl Cone {
 /// Base: the plane `z = height` within the radius.
 #[inline]
 pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
-    let o = ray.origin - c.apex;
-    let (oz, dz) = (o.dot(c.axis), ray.dir.dot(c.axis));
-    let (op, dp) = (o - c.axis * oz, ray.dir - c.axis * dz);
+    let r = AxialRay::new(ray, c.apex, c.axis);
+    let (oz, dz, op, dp) = (r.oz, r.dz, r.op, r.dp);
     let a = dp.dot(dp) - c.k2 * dz * dz;
     let b = op.dot(dp) - c.k2 * oz * dz;
     let cc = op.dot(op) - c.k2 * oz * oz;
@@ -128,36 +116,13 @@ pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
             (s0, s1) = (0.0, 0.0);
         }
     }
-    // Both range tests are widened by a bound on their own rounding, so a ray through the rim
-    // is taken by the side or the base and never slips between them.
-    let (op_len, dp_len) = (op.length(), dp.length());
-    let on_side = |t: f32| {
-        let z = oz + t * dz;
-        let slack = RIM_SLACK * (oz.abs() + (t * dz).abs());
-        if z >= -slack && z <= c.height + slack {
-            t
-        } else {
-            f32::NAN
-        }
-    };
-    let on_base = |t: f32| {
-        let reach = c.radius + RIM_SLACK * (op_len + t.abs() * dp_len);
-        if (op + dp * t).length_squared() <= reach * reach {
-            t
-        } else {
-            f32::NAN
-        }
-    };
-    let b0 = if dz != 0.0 {
-        on_base((c.height - oz) / dz)
-    } else {
-        f32::NAN
-    };
-    first_hit([on_side(s0), on_side(s1), b0], ray, t_max)
+    let sides = [s0, s1].map(|t| r.within_height(t, c.height));
+    first_hit([sides[0], sides[1], r.cap(c.height, c.radius)], ray, t_max)
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::axial::rim_test;
     use super::*;
     use glam::Vec3;
 
@@ -231,45 +196,26 @@ mod tests {
     fn rim_is_watertight() {
         let c = Cone::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
         let (u, v) = c.axis.any_orthonormal_pair();
-        let mut s = 5u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 40) as f32) / (1u64 << 24) as f32
-        };
-        let (o64, w, h, r) = (
+        let (o, w, h, r) = (
             c.apex.as_dvec3(),
             c.axis.as_dvec3(),
             c.height as f64,
             c.radius as f64,
         );
-        let penetration = |ray: &Ray| {
-            let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
-            (0..=2000)
-                .map(|k| {
-                    let q = o + d * (0.99 + 0.02 * k as f64 / 2000.0) - o64;
-                    let z = q.dot(w);
-                    let radial = (q - w * z).length();
+        let slipped = rim_test::slipped(
+            5,
+            20000,
+            c.bounds(),
+            |a, _| c.base() + (u * a.cos() + v * a.sin()) * c.radius,
+            |ray| intersect(&c, ray, f32::INFINITY),
+            |ray| {
+                rim_test::deepest(ray, |p| {
+                    let z = (p - o).dot(w);
+                    let radial = (p - o - w * z).length();
                     (r * z / h - radial).min(h - z)
                 })
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        let mut slipped = Vec::new();
-        for _ in 0..20000 {
-            let a = std::f32::consts::TAU * next();
-            let rim = c.base() + (u * a.cos() + v * a.sin()) * c.radius;
-            let o = Vec3A::new(next(), next(), next()) * 8.0 - 4.0;
-            if c.bounds().contains(o) {
-                continue;
-            }
-            let ray = Ray::infinite(o.into(), (rim - o).into()).unwrap();
-            match intersect(&c, &ray, f32::INFINITY) {
-                Some(t) if t <= 1.0 + 1e-4 => {}
-                other if penetration(&ray) > 1e-6 => slipped.push((ray, other)),
-                _ => {}
-            }
-        }
+            },
+        );
         assert!(
             slipped.is_empty(),
             "{} slipped, first {:?}",

@@ -1,5 +1,6 @@
 //! Finite, capped, arbitrarily oriented circular cylinders.
 
+use super::axial::{AxialRay, axis_segment, split};
 use super::quadratic::ball_roots;
 use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
 use crate::geometry::{Aabb, Ray};
@@ -22,19 +23,10 @@ pub struct Cylinder {
 impl Cylinder {
     /// The cylinder between the centres of its two caps.
     pub fn new(base: Vec3A, top: Vec3A, radius: f32) -> Result<Cylinder, ShapeError> {
-        if !(base.is_finite() && top.is_finite()) {
-            return Err(ShapeError::NonFinite("cylinder end points"));
-        }
-        if !(radius.is_finite() && radius > 0.0) {
-            return Err(ShapeError::NotPositive("cylinder radius", radius));
-        }
-        let height = (top - base).length();
-        if !(height.is_finite() && height > 0.0) {
-            return Err(ShapeError::ZeroLength("cylinder"));
-        }
+        let (axis, height) = axis_segment(base, top, radius, ["cylinder", "cylinder radius"])?;
         let mut shape = Cylinder {
             base,
-            axis: (top - base) / height,
+            axis,
             height,
             radius,
             bounds: Aabb::EMPTY,
@@ -79,9 +71,7 @@ impl Cylinder {
     /// Outward unit normal: the cap's axis direction when `p` is nearer a cap plane than the
     /// side, else the radial direction.
     pub fn normal_at(&self, p: Vec3A) -> Vec3A {
-        let q = p - self.base;
-        let z = q.dot(self.axis);
-        let radial = q - self.axis * z;
+        let (z, radial) = split(p - self.base, self.axis);
         let to_side = (radial.length() - self.radius).abs();
         if z.abs().min((z - self.height).abs()) < to_side {
             if z * 2.0 < self.height {
@@ -95,48 +85,20 @@ impl Cylinder {
     }
 }
 
-/// Relative widening of the cylinder's and cone's range tests (a few ulps of the magnitudes
-/// involved), so rims are watertight.
-pub(super) const RIM_SLACK: f32 = 8.0 * f32::EPSILON;
-
 /// The first crossing of the side (stable quadratic on the components off the axis, valid for
 /// `0 <= z <= height`) or a cap (plane `z = 0` or `z = height`, valid within the radius).
 #[inline]
 pub fn intersect(c: &Cylinder, ray: &Ray, t_max: f32) -> Option<f32> {
-    let o = ray.origin - c.base;
-    let (oz, dz) = (o.dot(c.axis), ray.dir.dot(c.axis));
-    let (op, dp) = (o - c.axis * oz, ray.dir - c.axis * dz);
-    // Both range tests are widened by a bound on their own rounding, so a ray through the rim
-    // is taken by the side or the cap and never slips between them.
-    let (op_len, dp_len) = (op.length(), dp.length());
-    let on_side = |t: f32| {
-        let z = oz + t * dz;
-        let slack = RIM_SLACK * (oz.abs() + (t * dz).abs());
-        if z >= -slack && z <= c.height + slack {
-            t
-        } else {
-            f32::NAN
-        }
-    };
-    let on_cap = |t: f32| {
-        let reach = c.radius + RIM_SLACK * (op_len + t.abs() * dp_len);
-        if (op + dp * t).length_squared() <= reach * reach {
-            t
-        } else {
-            f32::NAN
-        }
-    };
-    let (s0, s1) = ball_roots(op, dp, c.radius).unwrap_or((f32::NAN, f32::NAN));
-    let (c0, c1) = if dz != 0.0 {
-        (on_cap(-oz / dz), on_cap((c.height - oz) / dz))
-    } else {
-        (f32::NAN, f32::NAN)
-    };
-    first_hit([on_side(s0), on_side(s1), c0, c1], ray, t_max)
+    let r = AxialRay::new(ray, c.base, c.axis);
+    let (s0, s1) = ball_roots(r.op, r.dp, c.radius).unwrap_or((f32::NAN, f32::NAN));
+    let sides = [s0, s1].map(|t| r.within_height(t, c.height));
+    let caps = [0.0, c.height].map(|z| r.cap(z, c.radius));
+    first_hit([sides[0], sides[1], caps[0], caps[1]], ray, t_max)
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::axial::rim_test;
     use super::*;
     use glam::Vec3;
 
@@ -209,51 +171,30 @@ mod tests {
     fn rims_are_watertight() {
         let c = Cylinder::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
         let (u, v) = c.axis.any_orthonormal_pair();
-        let mut s = 3u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 40) as f32) / (1u64 << 24) as f32
-        };
-        let mut slipped = Vec::new();
-        for i in 0..20000 {
-            let a = std::f32::consts::TAU * next();
-            let end = if i % 2 == 0 { c.base() } else { c.top() };
-            let rim = end + (u * a.cos() + v * a.sin()) * c.radius;
-            let o = Vec3A::new(next(), next(), next()) * 8.0 - 4.0;
-            if c.bounds().contains(o) {
-                continue;
-            }
-            let r = Ray::infinite(o.into(), (rim - o).into()).unwrap();
-            match intersect(&c, &r, f32::INFINITY) {
-                Some(t) if t <= 1.0 + 1e-4 => {}
-                // Only a ray whose exact line enters the solid must hit; one that just
-                // touches the rim (on the silhouette, within the rounding of the aim) may miss.
-                other if penetration(&c, &r) > 1e-6 => slipped.push((r, other)),
-                _ => {}
-            }
-        }
+        let (b, w) = (c.base.as_dvec3(), c.axis.as_dvec3());
+        let slipped = rim_test::slipped(
+            3,
+            20000,
+            c.bounds(),
+            |a, i| {
+                let end = if i % 2 == 0 { c.base() } else { c.top() };
+                end + (u * a.cos() + v * a.sin()) * c.radius
+            },
+            |r| intersect(&c, r, f32::INFINITY),
+            |r| {
+                rim_test::deepest(r, |p| {
+                    let z = (p - b).dot(w);
+                    let radial = (p - b - w * z).length();
+                    (c.radius as f64 - radial).min(z).min(c.height as f64 - z)
+                })
+            },
+        );
         assert!(
             slipped.is_empty(),
             "{} slipped, first {:?}",
             slipped.len(),
             slipped[0]
         );
-    }
-
-    /// How deep (in `f64`) the exact line of `r` gets into the solid for `t` near 1.
-    fn penetration(c: &Cylinder, r: &Ray) -> f64 {
-        let (o, d) = (r.origin.as_dvec3(), r.dir.as_dvec3());
-        let (b, w) = (c.base.as_dvec3(), c.axis.as_dvec3());
-        (0..=2000)
-            .map(|k| {
-                let q = o + d * (0.99 + 0.02 * k as f64 / 2000.0) - b;
-                let z = q.dot(w);
-                let radial = (q - w * z).length();
-                (c.radius as f64 - radial).min(z).min(c.height as f64 - z)
-            })
-            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     #[test]

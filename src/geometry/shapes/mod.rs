@@ -10,6 +10,7 @@
 //! Shapes are built by validating constructors only (fields are private), so a [`Shape`] always
 //! has finite data, positive sizes, unit orthonormal frames and planar, non-degenerate polygons.
 
+mod axial;
 pub mod cone;
 pub mod cylinder;
 pub mod ellipsoid;

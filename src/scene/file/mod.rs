@@ -8,17 +8,16 @@
 //! or `shapes`, sit among the `[[sphere]]` and `[[shape]]` tables at the generator's place), and
 //! each object's primitives keep their own order.
 
+pub mod placed;
 pub mod schema;
 pub mod shape_schema;
 
 use super::generators::{DEFAULT_SEED, DEFAULT_SIZE, GeneratorSpec};
-use super::transform::{Transform, TransformError};
 use super::{Material, Scene, SceneError, obj};
 use crate::camera::Camera;
 use glam::Vec3A;
-use schema::{
-    GeneratorEntry, MaterialRef, MeshEntry, RotateSpec, ScaleSpec, SceneFile, SphereEntry,
-};
+use placed::{MaterialRef, Placed};
+use schema::{GeneratorEntry, MeshEntry, SceneFile, SphereEntry};
 use shape_schema::ShapeEntry;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -94,9 +93,10 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
         match object {
             Object::Mesh(m) => {
                 let what = format!("[[mesh]] path = \"{}\"", m.path);
-                let t = transform(m.scale, m.rotate, m.translate).map_err(|e| at(&what, &e))?;
+                let t = m.transform().map_err(|e| at(&what, &e))?;
                 let mesh = obj::load_obj(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
-                let material = material(&m.material, &file.materials).map_err(|e| at(&what, &e))?;
+                let material =
+                    material(m.material_ref(), &file.materials).map_err(|e| at(&what, &e))?;
                 scene
                     .materials
                     .start_triangles(scene.triangles.len(), material);
@@ -106,7 +106,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
             }
             Object::Generator(g) => {
                 let what = format!("[[generator]] name = \"{}\"", g.name);
-                let t = transform(g.scale, g.rotate, g.translate).map_err(|e| at(&what, &e))?;
+                let t = g.transform().map_err(|e| at(&what, &e))?;
                 let spec = GeneratorSpec::new(
                     &g.name,
                     g.n.unwrap_or(DEFAULT_SIZE as i64),
@@ -114,7 +114,8 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 )
                 .map_err(|e| at(&what, &e))?;
                 let generated = spec.generate().map_err(|e| at(&what, &e))?;
-                let material = material(&g.material, &file.materials).map_err(|e| at(&what, &e))?;
+                let material =
+                    material(g.material_ref(), &file.materials).map_err(|e| at(&what, &e))?;
                 scene
                     .materials
                     .start_triangles(scene.triangles.len(), material);
@@ -143,8 +144,8 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                         ),
                     ));
                 }
-                let material =
-                    material(&s.material, &file.materials).map_err(|e| at("[[sphere]]", &e))?;
+                let material = material(s.material.as_ref(), &file.materials)
+                    .map_err(|e| at("[[sphere]]", &e))?;
                 scene.materials.start_spheres(scene.spheres.len(), material);
                 scene.spheres.push(crate::geometry::Sphere::new(
                     Vec3A::from(s.center),
@@ -155,10 +156,9 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 let what = format!("[[shape]] kind = \"{}\"", s.kind());
                 let local = s.local_shape();
                 let local = local.map_err(|e| at(&what, &e))?;
-                let (scale, rotate, translate) = s.placement();
-                let t = transform(scale, rotate, translate).map_err(|e| at(&what, &e))?;
-                let material =
-                    material(s.material(), &file.materials).map_err(|e| at(&what, &e))?;
+                let t = s.placed().transform().map_err(|e| at(&what, &e))?;
+                let material = material(s.placed().material_ref(), &file.materials)
+                    .map_err(|e| at(&what, &e))?;
                 scene.materials.start_shapes(scene.shapes.len(), material);
                 scene
                     .shapes
@@ -203,7 +203,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
 
 /// An object's material: a `[material.NAME]` by name, or an inline table (validated).
 fn material(
-    r: &Option<MaterialRef>,
+    r: Option<&MaterialRef>,
     named: &BTreeMap<String, Material>,
 ) -> Result<Option<Material>, String> {
     match r {
@@ -221,19 +221,6 @@ fn material(
         }),
         Some(MaterialRef::Inline(m)) => m.validate().map(|()| Some(*m)),
     }
-}
-
-/// The transform of an object's `scale`, `rotate` and `translate` keys.
-fn transform(
-    scale: Option<ScaleSpec>,
-    rotate: Option<RotateSpec>,
-    translate: Option<[f64; 3]>,
-) -> Result<Transform, TransformError> {
-    Transform::new(
-        scale.map_or([1.0; 3], ScaleSpec::factors),
-        rotate.map(|r| (r.axis, r.degrees)),
-        translate.unwrap_or([0.0; 3]),
-    )
 }
 
 #[cfg(test)]

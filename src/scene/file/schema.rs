@@ -53,6 +53,8 @@
 //! radius = 0.2
 //! ```
 
+use super::placed::{MaterialRef, placed_entry};
+use super::shape_schema::ShapeEntry;
 use crate::scene::{AreaLight, CameraSpec, Material, PointLight};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -79,43 +81,24 @@ pub struct SceneFile {
     #[serde(default, rename = "area_light")]
     pub area_lights: Vec<AreaLight>,
     #[serde(default, rename = "shape")]
-    pub shapes: Vec<Spanned<super::shape_schema::ShapeEntry>>,
+    pub shapes: Vec<Spanned<ShapeEntry>>,
 }
 
-/// An object's `material`: the name of a `[material.NAME]` table, or an inline table.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "a material name (from a [material.NAME] table) or an inline table like { color = [r, g, b], diffuse = 0.7 } with keys color, ambient, diffuse, specular, shininess, emission"
-)]
-pub enum MaterialRef {
-    Named(String),
-    Inline(Material),
+placed_entry! {
+    /// `[[mesh]]`: an OBJ file placed by a transform.
+    MeshEntry {
+        /// Relative to the directory of the scene file (or absolute).
+        path: String,
+    }
 }
 
-/// `[[mesh]]`: an OBJ file placed by a transform.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MeshEntry {
-    /// Relative to the directory of the scene file (or absolute).
-    pub path: String,
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
-}
-
-/// `[[generator]]`: a built-in generator with its size and seed, placed by a transform.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GeneratorEntry {
-    pub name: String,
-    pub n: Option<i64>,
-    pub seed: Option<u64>,
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
+placed_entry! {
+    /// `[[generator]]`: a built-in generator with its size and seed, placed by a transform.
+    GeneratorEntry {
+        name: String,
+        n: Option<i64>,
+        seed: Option<u64>,
+    }
 }
 
 /// `[[sphere]]`: one sphere.
@@ -125,30 +108,4 @@ pub struct SphereEntry {
     pub center: [f32; 3],
     pub radius: f32,
     pub material: Option<MaterialRef>,
-}
-
-/// `scale = s` (uniform) or `scale = [sx, sy, sz]`.
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(untagged, expecting = "a number or an array [sx, sy, sz]")]
-pub enum ScaleSpec {
-    Uniform(f64),
-    PerAxis([f64; 3]),
-}
-
-impl ScaleSpec {
-    pub fn factors(self) -> [f64; 3] {
-        match self {
-            ScaleSpec::Uniform(s) => [s; 3],
-            ScaleSpec::PerAxis(s) => s,
-        }
-    }
-}
-
-/// `rotate = { axis = [x, y, z], degrees = a }`: a right-handed rotation about `axis` through
-/// the origin.
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RotateSpec {
-    pub axis: [f64; 3],
-    pub degrees: f64,
 }

@@ -34,7 +34,7 @@
 //! material = "red"                     # any kind: a [material.NAME] or an inline table
 //! ```
 
-use super::schema::{MaterialRef, RotateSpec, ScaleSpec};
+use super::placed::{Placed, placed_entry};
 use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
 use crate::geometry::{Shape, ShapeError};
 use glam::{Mat3A, Vec3A};
@@ -52,64 +52,41 @@ pub enum ShapeEntry {
     Ellipsoid(EllipsoidEntry),
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BoxEntry {
-    pub center: [f32; 3],
-    pub half_extents: [f32; 3],
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
+placed_entry! {
+    BoxEntry {
+        center: [f32; 3],
+        half_extents: [f32; 3],
+    }
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PolygonEntry {
-    pub vertices: Vec<[f32; 3]>,
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
+placed_entry! {
+    PolygonEntry {
+        vertices: Vec<[f32; 3]>,
+    }
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CylinderEntry {
-    pub base: [f32; 3],
-    pub top: [f32; 3],
-    pub radius: f32,
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
+placed_entry! {
+    CylinderEntry {
+        base: [f32; 3],
+        top: [f32; 3],
+        radius: f32,
+    }
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ConeEntry {
-    pub base: [f32; 3],
-    pub apex: [f32; 3],
-    pub radius: f32,
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
+placed_entry! {
+    ConeEntry {
+        base: [f32; 3],
+        apex: [f32; 3],
+        radius: f32,
+    }
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct EllipsoidEntry {
-    pub center: [f32; 3],
-    pub radii: [f32; 3],
-    pub scale: Option<ScaleSpec>,
-    pub rotate: Option<RotateSpec>,
-    pub translate: Option<[f64; 3]>,
-    pub material: Option<MaterialRef>,
+placed_entry! {
+    EllipsoidEntry {
+        center: [f32; 3],
+        radii: [f32; 3],
+    }
 }
-
-/// The `scale`, `rotate` and `translate` keys of an entry.
-pub type Placement = (Option<ScaleSpec>, Option<RotateSpec>, Option<[f64; 3]>);
 
 impl ShapeEntry {
     /// The `kind` as written in the file.
@@ -147,27 +124,14 @@ impl ShapeEntry {
         })
     }
 
-    /// The entry's `material` key.
-    pub fn material(&self) -> &Option<MaterialRef> {
+    /// The entry's shared keys (transform and material).
+    pub fn placed(&self) -> &dyn Placed {
         match self {
-            ShapeEntry::Box(e) => &e.material,
-            ShapeEntry::ConvexPolygon(e) | ShapeEntry::ConcavePolygon(e) => &e.material,
-            ShapeEntry::Cylinder(e) => &e.material,
-            ShapeEntry::Cone(e) => &e.material,
-            ShapeEntry::Ellipsoid(e) => &e.material,
-        }
-    }
-
-    /// The entry's transform keys.
-    pub fn placement(&self) -> Placement {
-        match self {
-            ShapeEntry::Box(e) => (e.scale, e.rotate, e.translate),
-            ShapeEntry::ConvexPolygon(e) | ShapeEntry::ConcavePolygon(e) => {
-                (e.scale, e.rotate, e.translate)
-            }
-            ShapeEntry::Cylinder(e) => (e.scale, e.rotate, e.translate),
-            ShapeEntry::Cone(e) => (e.scale, e.rotate, e.translate),
-            ShapeEntry::Ellipsoid(e) => (e.scale, e.rotate, e.translate),
+            ShapeEntry::Box(e) => e,
+            ShapeEntry::ConvexPolygon(e) | ShapeEntry::ConcavePolygon(e) => e,
+            ShapeEntry::Cylinder(e) => e,
+            ShapeEntry::Cone(e) => e,
+            ShapeEntry::Ellipsoid(e) => e,
         }
     }
 }
