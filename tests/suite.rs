@@ -1,8 +1,9 @@
 //! The suite: verification catches an index that drops a primitive (and names the ray), the
 //! report's CSV has the promised columns and parses, and `accelbench run --quick` runs end to end.
 
+use accelbench::camera::Camera;
 use accelbench::geometry::triangle::Watertight;
-use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
+use accelbench::geometry::{Hit, Ray, Triangle, TriangleKernelKind};
 use accelbench::harness::suite::{ResultRow, SuiteConfig, run_suite_with};
 use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{
@@ -211,5 +212,46 @@ fn bad_run_arguments_fail_with_a_message() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{args:?}");
         assert!(err.contains(expect), "{args:?}: {err}");
+    }
+}
+
+/// A triangle with a corner exactly at the protocol camera's eye makes two of its edge
+/// functions exactly zero on every primary ray, which only the exact kernel's fallback decides:
+/// the suite reports a positive fallback share for each of our indices with `--kernel exact`,
+/// none for peers (their own triangle tests) and none with other kernels.
+#[test]
+fn exact_kernel_fallback_share_is_reported_per_index() {
+    let mut scene = generators::generate("icosphere", 200, 1).unwrap();
+    let bounds = scene.ray_set_bounds();
+    scene.reference_bounds = Some(bounds);
+    let eye = glam::Vec3A::from(Camera::protocol(&bounds, 48, 48).unwrap().eye_f32());
+    let to_centre = bounds.center() - eye;
+    let side = to_centre.any_orthonormal_vector() * to_centre.length() * 0.05;
+    scene.triangles.push(Triangle::new(
+        eye,
+        eye + to_centre * 0.5 + side,
+        eye + to_centre * 0.5 - side,
+    ));
+    let mut cfg = config(&["brute", "bvh", "obvhs-bvh2"]);
+    cfg.sets = vec![RaySet::Primary];
+    cfg.threads = vec![1];
+    cfg.repeats = 1;
+    for kernel in [TriangleKernelKind::Exact, TriangleKernelKind::Watertight] {
+        cfg.kernel = kernel;
+        let res = accelbench::harness::suite::run_suite(
+            std::slice::from_ref(&scene),
+            &cfg,
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        assert_eq!(res.rows.len(), 3);
+        for r in &res.rows {
+            let counted = kernel == TriangleKernelKind::Exact && r.index != "obvhs-bvh2";
+            if counted {
+                assert!(r.exact_fallback_rate > 0.0, "{r:?}");
+            } else {
+                assert!(r.exact_fallback_rate.is_nan(), "{r:?}");
+            }
+        }
     }
 }

@@ -33,6 +33,10 @@ pub struct ResultRow {
     pub query: String,
     pub kernel: String,
     pub repeats: usize,
+    /// With the exact kernel: the share of edge functions (three per primitive test) whose sign
+    /// the fast filter could not certify, so the exact fallback decided it. NaN for other
+    /// kernels and for peers (their own triangle tests).
+    pub exact_fallback_rate: f64,
 }
 
 /// A mismatch with where it happened.

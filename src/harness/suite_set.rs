@@ -6,7 +6,8 @@ use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
 use super::timing::{BatchHits, Query, Timing, counting_pass, timed_pass};
 use super::verify::{Mismatch, compare_closest};
 use super::workload::RaySet;
-use crate::geometry::Ray;
+use crate::geometry::triangle::exact::fallback_total;
+use crate::geometry::{Ray, TriangleKernelKind};
 use crate::index::{Counters, TraceIndex, is_peer};
 use crate::scene::Scene;
 use indicatif::ProgressBar;
@@ -208,9 +209,11 @@ pub(super) fn run_set(
             progress.inc(1);
             continue;
         }
+        let fallbacks_before = fallback_total();
         let (counters, hits) = pools
             .all()
             .install(|| counting_pass(index, query, run.rays));
+        let exact_fallbacks = fallback_total() - fallbacks_before;
         let mut tally = Tally {
             scene: &run.scene.name,
             index: index.name(),
@@ -224,6 +227,7 @@ pub(super) fn run_set(
             total: counters.iter().copied().sum(),
             hits: hits.iter().flatten().count(),
             mismatches: tally.count,
+            exact_fallbacks,
         };
         for (threads, timing) in timings {
             res.rows
@@ -238,6 +242,8 @@ struct SetCounts {
     total: Counters,
     hits: usize,
     mismatches: usize,
+    /// Edge functions the exact kernel's fallback decided during the counting pass.
+    exact_fallbacks: u64,
 }
 
 fn result_row(
@@ -280,5 +286,10 @@ fn result_row(
         .into(),
         kernel: cfg.kernel.name().into(),
         repeats: if cfg.timed { cfg.repeats } else { 0 },
+        exact_fallback_rate: if cfg.kernel == TriangleKernelKind::Exact && !is_peer(index.name()) {
+            c.exact_fallbacks as f64 / (3 * c.total.prim_tests.max(1)) as f64
+        } else {
+            f64::NAN
+        },
     }
 }

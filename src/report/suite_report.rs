@@ -139,6 +139,31 @@ fn set_table(rows: &[&ResultRow], threads: &[usize]) -> String {
     s
 }
 
+/// With the exact kernel, the share of edge functions its exact fallback decided, per index
+/// (from the counting pass); empty otherwise.
+fn fallback_line(rows: &[&ResultRow]) -> String {
+    let mut seen = Vec::new();
+    for r in rows.iter().filter(|r| r.exact_fallback_rate.is_finite()) {
+        if !seen.iter().any(|(name, _)| *name == r.index) {
+            seen.push((r.index.as_str(), r.exact_fallback_rate));
+        }
+    }
+    if seen.is_empty() {
+        return String::new();
+    }
+    let parts: Vec<String> = seen
+        .iter()
+        .map(|(name, rate)| match rate {
+            0.0 => format!("{name} 0"),
+            _ => format!("{name} {rate:.2e}"),
+        })
+        .collect();
+    format!(
+        "Exact kernel: share of edge functions decided by the exact fallback: {}.\n\n",
+        parts.join(", ")
+    )
+}
+
 /// The human-readable summary.
 pub fn summary_markdown(
     meta: &RunMeta,
@@ -198,6 +223,7 @@ pub fn summary_markdown(
                 "### {scene}, {set} rays\n\n{}",
                 set_table(&in_set, &threads)
             );
+            s.push_str(&fallback_line(&in_set));
         }
         for v in res.verification.iter().filter(|v| v.scene == scene) {
             let _ = writeln!(s, "- verification, {}: {}", v.what, v.reason);

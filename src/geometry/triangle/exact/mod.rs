@@ -39,6 +39,7 @@ use crate::geometry::Ray;
 use expansion::ExactSum;
 use glam::{DVec3, Vec3A};
 use std::cell::Cell;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Exact;
@@ -50,6 +51,17 @@ thread_local! {
     /// Edge functions of this thread whose sign the filter could not decide (counted only on
     /// the rare fallback path; read with [`fallback_count`]).
     static FALLBACKS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// Edge functions of all threads that needed the exact fallback (the suite reads it around a
+/// pass, when nothing else traces).
+static FALLBACKS_TOTAL: AtomicU64 = AtomicU64::new(0);
+
+/// How many edge functions needed the exact fallback, over all threads, since the process
+/// started. The difference of two readings around a pass is that pass's count when no other
+/// pass ran meanwhile.
+pub fn fallback_total() -> u64 {
+    FALLBACKS_TOTAL.load(Ordering::Relaxed)
 }
 
 /// How many edge functions needed the exact fallback on the calling thread since it started.
@@ -123,6 +135,7 @@ fn intersect_line(tri: &Triangle, ray: &Ray) -> Option<f32> {
 #[inline(never)]
 pub fn exact_edge_sign(p: Vec3A, q: Vec3A, ray: &Ray) -> Option<i32> {
     FALLBACKS.with(|n| n.set(n.get() + 1));
+    FALLBACKS_TOTAL.fetch_add(1, Ordering::Relaxed);
     let (o, d) = (ray.origin, ray.dir);
     if !(p.is_finite() && q.is_finite() && o.is_finite() && d.is_finite()) {
         return None;
