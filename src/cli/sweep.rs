@@ -183,28 +183,54 @@ fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
             spec: format!("grid:lambda={l}").parse()?,
         });
     }
+    let plot = SweepPlot {
+        title: format!("grid on {}, {} rays", p.scene.name, a.common.rays.name()),
+        x_label: "cells along the longest axis".into(),
+        log_x: true,
+        marker: Some((
+            heuristic as f64,
+            format!("heuristic (lambda={DEFAULT_LAMBDA})"),
+        )),
+    };
+    let default = format!("grid:lambda={DEFAULT_LAMBDA}");
+    sweep_and_write(&p, &a.common, "grid", "cells", &points, &plot, &default)
+}
+
+/// Times every point on the prepared scene and rays (progress on stderr, one line per point;
+/// `size_label` names what the structure's size counts, e.g. "cells"), writes the CSV and
+/// charts, and prints the fastest point and how the `default` spec compares with it.
+fn sweep_and_write(
+    p: &Prepared,
+    common: &CommonSweepArgs,
+    index: &str,
+    size_label: &str,
+    points: &[SweepPoint],
+    plot: &SweepPlot,
+    default: &str,
+) -> anyhow::Result<()> {
     let geom = p.scene.geometry();
     let setup = SweepSetup {
         geom: &geom,
         kernel: TriangleKernelKind::Watertight,
         rays: &p.rays,
-        repeats: a.common.repeats as usize,
+        repeats: common.repeats as usize,
     };
     eprintln!(
-        "sweeping grid on '{}' ({n} primitives), {} {} rays, {} points, {} threads",
+        "sweeping {index} on '{}' ({} primitives), {} {} rays, {} points, {} threads",
         p.scene.name,
+        p.scene.len(),
         p.rays.len(),
-        a.common.rays.name(),
+        common.rays.name(),
         points.len(),
         p.threads
     );
     let rows = with_threads(p.threads, || {
         run_sweep(
             &setup,
-            &points,
+            points,
             |r| {
                 eprintln!(
-                    "  x={:<6} {:<28} cells {:>10}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} cells/ray",
+                    "  x={:<6} {:<44} {size_label} {:>10}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} {size_label}/ray",
                     r.x,
                     r.spec,
                     r.cells,
@@ -217,17 +243,8 @@ fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
             |p, e| eprintln!("  skipped {}: {e}", p.spec),
         )
     })??;
-    let plot = SweepPlot {
-        title: format!("grid on {}, {} rays", p.scene.name, a.common.rays.name()),
-        x_label: "cells along the longest axis".into(),
-        log_x: true,
-        marker: Some((
-            heuristic as f64,
-            format!("heuristic (lambda={DEFAULT_LAMBDA})"),
-        )),
-    };
-    let files = write_sweep(&p.out, a.common.rays.name(), &rows, &plot)?;
-    summarize(&rows, &format!("grid:lambda={DEFAULT_LAMBDA}"));
+    let files = write_sweep(&p.out, common.rays.name(), &rows, plot)?;
+    summarize(&rows, default);
     println!("wrote {}", files.csv.display());
     println!("wrote {}", files.rays_chart.display());
     println!("wrote {}", files.build_chart.display());
@@ -276,40 +293,6 @@ fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
             });
         }
     }
-    let geom = p.scene.geometry();
-    let setup = SweepSetup {
-        geom: &geom,
-        kernel: TriangleKernelKind::Watertight,
-        rays: &p.rays,
-        repeats: a.common.repeats as usize,
-    };
-    eprintln!(
-        "sweeping {name} on '{}' ({} primitives), {} {} rays, {} points, {} threads",
-        p.scene.name,
-        p.scene.len(),
-        p.rays.len(),
-        a.common.rays.name(),
-        points.len(),
-        p.threads
-    );
-    let rows = with_threads(p.threads, || {
-        run_sweep(
-            &setup,
-            &points,
-            |r| {
-                eprintln!(
-                    "  {:<44} nodes {:>9}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} nodes/ray",
-                    r.spec,
-                    r.cells,
-                    r.build_ms,
-                    r.rays_per_s / 1e6,
-                    r.prim_tests_per_ray,
-                    r.node_visits_per_ray
-                )
-            },
-            |p, e| eprintln!("  skipped {}: {e}", p.spec),
-        )
-    })??;
     let plot = SweepPlot {
         title: format!("{name} on {}, {} rays", p.scene.name, a.common.rays.name()),
         x_label: "max primitives per leaf".into(),
@@ -322,12 +305,15 @@ fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
             ),
         )),
     };
-    let files = write_sweep(&p.out, a.common.rays.name(), &rows, &plot)?;
     let default: crate::index::IndexSpec =
         format!("{name}:max_prims={},max_depth={}", d.max_prims, d.max_depth).parse()?;
-    summarize(&rows, &default.to_string());
-    println!("wrote {}", files.csv.display());
-    println!("wrote {}", files.rays_chart.display());
-    println!("wrote {}", files.build_chart.display());
-    Ok(())
+    sweep_and_write(
+        &p,
+        &a.common,
+        name,
+        "nodes",
+        &points,
+        &plot,
+        &default.to_string(),
+    )
 }

@@ -84,10 +84,20 @@ pub fn compare_indices(
     rays: &[Ray],
 ) -> Vec<Mismatch> {
     let mut expected = vec![None; rays.len()];
-    let mut got = vec![None; rays.len()];
     reference.closest_hits(rays, &mut expected);
+    compare_with_expected(index, rays, &expected)
+}
+
+/// Checks `index` against the reference's closest hits `expected` on `rays`: closest hits bit
+/// for bit, and any-hit equal to "the reference found a closest hit".
+pub fn compare_with_expected(
+    index: &dyn TraceIndex,
+    rays: &[Ray],
+    expected: &[Option<Hit>],
+) -> Vec<Mismatch> {
+    let mut got = vec![None; rays.len()];
     index.closest_hits(rays, &mut got);
-    let mut out = compare_closest(rays, &expected, &got);
+    let mut out = compare_closest(rays, expected, &got);
     let mut any = vec![false; rays.len()];
     index.any_hits(rays, &mut any);
     for (i, (r, (e, a))) in rays.iter().zip(expected.iter().zip(&any)).enumerate() {

@@ -8,9 +8,8 @@ pub mod report;
 pub mod self_intersection;
 
 use crate::geometry::{Hit, TriangleKernelKind};
-use crate::harness::verify::{Mismatch, compare_closest};
+use crate::harness::verify::{Mismatch, compare_with_expected};
 use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, index_names};
-use crate::rays::ray_to_record;
 use crate::scene::SceneGeometry;
 use cases::Case;
 use self_intersection::SpawnRow;
@@ -100,26 +99,7 @@ impl StressSummary {
 /// Compares `index` with brute force's closest hits `expected` on the case's rays: closest hits
 /// bit for bit, and any-hit equal to "brute force found a hit".
 fn check(case: &Case, expected: &[Option<Hit>], index: &dyn TraceIndex) -> Vec<Mismatch> {
-    let mut got = vec![None; case.rays.len()];
-    index.closest_hits(&case.rays, &mut got);
-    let mut out = compare_closest(&case.rays, expected, &got);
-    let mut any = vec![false; case.rays.len()];
-    index.any_hits(&case.rays, &mut any);
-    for (i, (r, (e, a))) in case.rays.iter().zip(expected.iter().zip(&any)).enumerate() {
-        if e.is_some() != *a {
-            out.push(Mismatch {
-                ray_index: i,
-                ray_bits: ray_to_record(r).map(f32::to_bits),
-                query: "any",
-                expected: *e,
-                got: a.then_some(Hit {
-                    t: f32::NAN,
-                    prim: u32::MAX,
-                }),
-            });
-        }
-    }
-    out
+    compare_with_expected(index, &case.rays, expected)
 }
 
 /// How [`run_one`] builds an index (the registry's [`build_index`], or a test double).
