@@ -15,10 +15,11 @@ pub mod obvhs_peer;
 pub mod octree;
 mod registry;
 mod stats;
+pub mod wbvh;
 
 pub use brute::BruteForce;
 pub use bsp::Bsp;
-pub use bvh::Bvh;
+pub use bvh::{Bvh, BvhParams};
 pub use grid::{Grid, GridParams};
 pub use kdtree::KdTree;
 pub use obvhs_peer::{ObvhsBvh2, ObvhsCwBvh};
@@ -28,6 +29,7 @@ pub use registry::{
     parse_params, peer_names,
 };
 pub use stats::{Counters, NoStats, Stats};
+pub use wbvh::{Bvh4, Bvh8};
 
 use crate::geometry::{Hit, Ray};
 use crate::scene::Geometry;

@@ -50,6 +50,8 @@ const fn entry<I: Index>(name: &'static str, kind: Kind) -> Entry {
 const REGISTRY: &[Entry] = &[
     entry::<BruteForce>("brute", Kind::Ours),
     entry::<Bvh>("bvh", Kind::Ours),
+    entry::<super::Bvh4>("bvh4", Kind::Ours),
+    entry::<super::Bvh8>("bvh8", Kind::Ours),
     entry::<super::Grid>("grid", Kind::Ours),
     entry::<NeighborOctree>("octree", Kind::Ours),
     entry::<TopDownOctree>("octree-topdown", Kind::Ours),

@@ -10,10 +10,10 @@
 
 mod binned;
 mod build;
-mod node;
+pub(crate) mod node;
 pub mod params;
 mod prim_ref;
-mod slab;
+pub(crate) mod slab;
 mod sweep;
 mod traverse;
 
@@ -119,6 +119,12 @@ impl Index for Bvh {
 }
 
 impl Bvh {
+    /// The root's box and reference, the inner nodes and the primitive ids in leaf order (for
+    /// the wide BVH, which collapses this tree).
+    pub(crate) fn parts(&self) -> (Aabb, Child, &[Node], &[u32]) {
+        (self.root_bounds, self.root, &self.nodes, &self.prim_ids)
+    }
+
     #[inline(always)]
     fn tree(&self) -> traverse::Tree<'_> {
         traverse::Tree {

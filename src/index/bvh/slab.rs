@@ -13,6 +13,9 @@
 //! exact (see [`crate::geometry::Hit`]). `tests` checks the equality on random and degenerate
 //! rays.
 //!
+//! [`hit_boxes4`] does the same for four boxes in structure-of-arrays form (the wide BVH's
+//! nodes), with the same per-lane operations.
+//!
 //! Two variants, chosen once per ray by [`SlabRay::finite`]:
 //! - `SAFE = false` when every component of `inv_dir` is finite. A product `(p - o) * inv` can
 //!   then not be NaN: `p - o` is finite or, on overflow, infinite, and `inv` is finite and
@@ -52,13 +55,14 @@ impl SlabRay {
     }
 }
 
-/// Entry (lanes 0, 1: `t_near`) and exit (`t_far`) distances of one axis's two slabs per child,
-/// duplicated in lanes 2, 3.
+/// Per lane, the distance `(plane - origin) * inv_dir` to one slab plane, as an entry candidate
+/// and an exit candidate: equal, except that with `SAFE` a NaN (origin on the slab plane,
+/// direction 0 on that axis) becomes `-inf` for the entry and `+inf` for the exit ("no
+/// constraint"), as in the scalar test.
 #[inline(always)]
-fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, Vec4) {
+fn plane_distances<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, Vec4) {
     let t = (planes - origin) * inv_dir;
-    let (near, far) = if SAFE {
-        // NaN (origin on the slab plane, direction 0 on that axis) means "no constraint".
+    if SAFE {
         let ok = t.cmpeq(t);
         (
             Vec4::select(ok, t, Vec4::NEG_INFINITY),
@@ -66,8 +70,28 @@ fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, V
         )
     } else {
         (t, t)
-    };
+    }
+}
+
+/// Entry (lanes 0, 1: `t_near`) and exit (`t_far`) distances of one axis's two slabs per child,
+/// duplicated in lanes 2, 3.
+#[inline(always)]
+fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, Vec4) {
+    let (near, far) = plane_distances::<SAFE>(planes, origin, inv_dir);
     (near.min(near.zwxy()), far.max(far.zwxy()))
+}
+
+/// From the per-axis entries and exits of four boxes: the hit mask (bit `i` for lane `i`) of
+/// the boxes whose interval, with the far distance widened by [`SLAB_FAR_SCALE`] and clipped to
+/// `[ray.t_min, t_max]`, is not empty, and the entries.
+#[inline(always)]
+fn clip(near: [Vec4; 3], far: [Vec4; 3], t_min: Vec4, t_max: f32) -> (u32, Vec4) {
+    let enter = near[0].max(near[1]).max(near[2].max(t_min));
+    let far = far[0].min(far[1]).min(far[2]);
+    let exit = (far * SLAB_FAR_SCALE)
+        .max(far * (2.0 - SLAB_FAR_SCALE))
+        .min(Vec4::splat(t_max));
+    (enter.cmple(exit).bitmask(), enter)
 }
 
 /// Tests both children's boxes against `[ray.t_min, t_max]`: bit 0 of the mask is set when child
@@ -78,12 +102,31 @@ pub fn hit_children<const SAFE: bool>(node: &Node, ray: &SlabRay, t_max: f32) ->
     let (nx, fx) = axis::<SAFE>(node.x, ray.origin[0], ray.inv_dir[0]);
     let (ny, fy) = axis::<SAFE>(node.y, ray.origin[1], ray.inv_dir[1]);
     let (nz, fz) = axis::<SAFE>(node.z, ray.origin[2], ray.inv_dir[2]);
-    let enter = nx.max(ny).max(nz.max(ray.t_min));
-    let far = fx.min(fy).min(fz);
-    let exit = (far * SLAB_FAR_SCALE)
-        .max(far * (2.0 - SLAB_FAR_SCALE))
-        .min(Vec4::splat(t_max));
-    (enter.cmple(exit).bitmask() & 0b11, enter)
+    let (mask, enter) = clip([nx, ny, nz], [fx, fy, fz], ray.t_min, t_max);
+    (mask & 0b11, enter)
+}
+
+/// Four boxes in structure-of-arrays form: lane `i` of `min[axis]` and `max[axis]` is box `i`.
+#[derive(Debug, Clone, Copy)]
+pub struct Boxes4 {
+    pub min: [Vec4; 3],
+    pub max: [Vec4; 3],
+}
+
+/// Tests four boxes against `[ray.t_min, t_max]` with the same arithmetic as
+/// [`hit_children`] (and so as the scalar test): bit `i` of the mask is set when box `i` is
+/// hit, lane `i` of the vector is its entry distance.
+#[inline(always)]
+pub fn hit_boxes4<const SAFE: bool>(b: &Boxes4, ray: &SlabRay, t_max: f32) -> (u32, Vec4) {
+    let mut near = [Vec4::ZERO; 3];
+    let mut far = [Vec4::ZERO; 3];
+    for k in 0..3 {
+        let (ln, lf) = plane_distances::<SAFE>(b.min[k], ray.origin[k], ray.inv_dir[k]);
+        let (hn, hf) = plane_distances::<SAFE>(b.max[k], ray.origin[k], ray.inv_dir[k]);
+        near[k] = ln.min(hn);
+        far[k] = lf.max(hf);
+    }
+    clip(near, far, ray.t_min, t_max)
 }
 
 #[cfg(test)]
@@ -166,6 +209,47 @@ mod tests {
         }
         // The generator must exercise both variants and both outcomes.
         assert!(safe_rays > 10_000 && hits > 10_000, "{safe_rays} {hits}");
+    }
+
+    /// The four-box test equals the scalar test on the same random and degenerate rays.
+    #[test]
+    fn four_box_test_equals_the_scalar_slab_test() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let (mut hits, mut safe_rays) = (0, 0);
+        for _ in 0..100_000 {
+            let boxes = [rng.aabb(), rng.aabb(), rng.aabb(), rng.aabb()];
+            let lanes = |f: fn(&Aabb) -> Vec3A| {
+                let p = boxes.map(|b| f(&b));
+                [0, 1, 2].map(|k| Vec4::new(p[0][k], p[1][k], p[2][k], p[3][k]))
+            };
+            let b4 = Boxes4 {
+                min: lanes(|b| b.min),
+                max: lanes(|b| b.max),
+            };
+            let o = Vec3::new(rng.coord(), rng.coord(), rng.coord());
+            let d = Vec3::new(rng.dir(), rng.dir(), rng.dir());
+            let Ok(ray) = Ray::new(o, d, rng.coord().min(0.0), f32::INFINITY) else {
+                continue;
+            };
+            let t_max = if rng.next().is_multiple_of(2) {
+                f32::INFINITY
+            } else {
+                rng.coord().abs() * 3.0
+            };
+            let want = boxes.map(|b| scalar(&b, &ray, t_max));
+            let four = |(mask, enter): (u32, Vec4)| {
+                [0, 1, 2, 3].map(|i| (mask >> i & 1 == 1).then_some(enter[i]))
+            };
+            let sr = SlabRay::new(&ray);
+            assert_eq!(four(hit_boxes4::<true>(&b4, &sr, t_max)), want, "{ray:?}");
+            if SlabRay::finite(&ray) {
+                assert_eq!(four(hit_boxes4::<false>(&b4, &sr, t_max)), want, "{ray:?}");
+            } else {
+                safe_rays += 1;
+            }
+            hits += want.iter().flatten().count();
+        }
+        assert!(safe_rays > 5_000 && hits > 10_000, "{safe_rays} {hits}");
     }
 
     #[test]

@@ -1,0 +1,126 @@
+//! Wide BVHs (`bvh4`, `bvh8`): the binary SAH tree of [`Bvh`] collapsed into nodes of up to 4
+//! or 8 children whose boxes are tested together, four per SIMD slab pass, front-to-back
+//! closest hit with early termination, and any-hit.
+//!
+//! - `node`: the node layout and the collapse; `traverse`: the queries.
+//! - The parameters are the binary BVH's ([`BvhParams`]): the leaves are its leaves.
+//! - Leaves test their primitives one by one through [`Geometry::intersect`] (the shared
+//!   kernel); SIMD leaves are not done yet.
+
+mod node;
+mod traverse;
+
+use super::bvh::BvhParams;
+use super::{BuildError, Bvh, Index, IndexInfo, Stats};
+use crate::geometry::{Aabb, Hit, Ray};
+use crate::index::bvh::node::Child;
+use crate::scene::Geometry;
+use node::{WideNode, collapse};
+
+/// A BVH whose nodes hold up to `4 * C` children (`C` = 1 or 2).
+#[derive(Debug, Clone)]
+pub struct WideBvh<const C: usize> {
+    root_bounds: Aabb,
+    root: Child,
+    nodes: Vec<WideNode<C>>,
+    prim_ids: Vec<u32>,
+    leaves: usize,
+    depth: u32,
+}
+
+/// Four children per node.
+pub type Bvh4 = WideBvh<1>;
+/// Eight children per node.
+pub type Bvh8 = WideBvh<2>;
+
+impl<const C: usize> Index for WideBvh<C> {
+    type Params = BvhParams;
+
+    fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
+        const { assert!(C == 1 || C == 2, "the traversal's buffers hold 8 children") };
+        let binary = Bvh::build(geom, params)?;
+        let (root_bounds, root, nodes, prim_ids) = binary.parts();
+        let wide = collapse::<C>(root, nodes);
+        Ok(WideBvh {
+            root_bounds,
+            root: wide.root,
+            nodes: wide.nodes,
+            prim_ids: prim_ids.to_vec(),
+            leaves: wide.leaves,
+            depth: wide.depth,
+        })
+    }
+
+    #[inline]
+    fn closest_hit<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        ray: &Ray,
+        stats: &mut S,
+    ) -> Option<Hit> {
+        traverse::closest_hit(self.tree(), geom, ray, stats)
+    }
+
+    #[inline]
+    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+        traverse::any_hit(self.tree(), geom, ray, stats)
+    }
+
+    fn info(&self) -> IndexInfo {
+        let memory_bytes = size_of::<Aabb>()
+            + self.nodes.len() * size_of::<WideNode<C>>()
+            + self.prim_ids.len() * 4;
+        let children: u32 = self.nodes.iter().map(|n| n.valid.count_ones()).sum();
+        IndexInfo {
+            nodes: self.nodes.len() + self.leaves,
+            leaves: self.leaves,
+            depth: self.depth as usize,
+            memory_bytes,
+            prim_refs: self.prim_ids.len(),
+            extra: vec![
+                (
+                    "bytes_per_prim".into(),
+                    memory_bytes as f64 / self.prim_ids.len() as f64,
+                ),
+                (
+                    "children_per_node".into(),
+                    children as f64 / self.nodes.len().max(1) as f64,
+                ),
+            ],
+            ..IndexInfo::default()
+        }
+    }
+}
+
+impl<const C: usize> WideBvh<C> {
+    #[inline(always)]
+    fn tree(&self) -> traverse::Tree<'_, C> {
+        traverse::Tree {
+            root_bounds: &self.root_bounds,
+            root: self.root,
+            nodes: &self.nodes,
+            prim_ids: &self.prim_ids,
+        }
+    }
+
+    /// How many nodes have each number of children (index = children) and how many leaves have
+    /// each number of primitives (index = primitives, capped at the last slot), for tests.
+    pub fn shape_histograms(&self) -> (Vec<usize>, Vec<usize>) {
+        let mut kids = vec![0; 4 * C + 1];
+        let mut leaf_sizes = vec![0; 65];
+        let mut leaf = |c: Child| leaf_sizes[(c.count as usize).min(64)] += 1;
+        if self.root.is_leaf() {
+            leaf(self.root);
+        }
+        for n in &self.nodes {
+            kids[n.valid.count_ones() as usize] += 1;
+            for i in 0..n.valid.count_ones() as usize {
+                let c = n.children[i / 4][i % 4];
+                if c.is_leaf() {
+                    leaf(c);
+                }
+            }
+        }
+        (kids, leaf_sizes)
+    }
+}

@@ -1,0 +1,95 @@
+//! The wide BVHs (`bvh4`, `bvh8`) beyond the generic agreement test: with leaves of every size
+//! up to 8 and nodes of every width from 2 to 8 present, and on small corner scenes, they
+//! return brute force's hits bit for bit.
+
+mod common;
+
+use accelbench::geometry::Triangle;
+use accelbench::index::{Bvh4, Bvh8, BvhParams, Index};
+use accelbench::scene::{Scene, Triangles, generators};
+use glam::Vec3A;
+
+/// Leaf sizes 1..=8 and node widths 2..=`max_children` all occur in the wide trees of the
+/// agreement scenes with `leaf_size` 1 to 8 and a cheap or an expensive node step (which makes
+/// the SAH fill leaves), the union over the builds.
+fn assert_every_shape_occurs<I: Index<Params = BvhParams>>(
+    max_children: usize,
+    histograms: impl Fn(&I) -> (Vec<usize>, Vec<usize>),
+) {
+    let mut kids = vec![0; max_children + 1];
+    let mut leaves = vec![0; 65];
+    for scene in ["soup", "icosphere", "stadium"] {
+        let scene = generators::generate(scene, 3000, 5).unwrap();
+        let geom =
+            Triangles::<accelbench::geometry::triangle::Watertight>::new(scene.triangles.into());
+        for (leaf_size, cost_ratio) in (1..=8).flat_map(|l| [(l, 1.0), (l, 100.0)]) {
+            let params: BvhParams = toml::from_str(&format!(
+                "leaf_size = {leaf_size}\ncost_ratio = {cost_ratio:?}"
+            ))
+            .unwrap();
+            let index = I::build(&geom, &params).unwrap();
+            let (k, l) = histograms(&index);
+            kids.iter_mut().zip(k).for_each(|(a, b)| *a += b);
+            leaves.iter_mut().zip(l).for_each(|(a, b)| *a += b);
+        }
+    }
+    assert!(kids[2..].iter().all(|&n| n > 0), "node widths {kids:?}");
+    assert!(
+        leaves[1..=8].iter().all(|&n| n > 0),
+        "leaf sizes {leaves:?}"
+    );
+}
+
+#[test]
+fn every_leaf_size_and_node_width_occurs() {
+    assert_every_shape_occurs::<Bvh4>(4, Bvh4::shape_histograms);
+    assert_every_shape_occurs::<Bvh8>(8, Bvh8::shape_histograms);
+}
+
+fn specs() -> Vec<String> {
+    let mut s = Vec::new();
+    for name in ["bvh4", "bvh8"] {
+        for leaf in [1, 4, 8] {
+            s.push(format!("{name}:leaf_size={leaf}"));
+        }
+        s.push(format!("{name}:preset=\"sweep\""));
+        s.push(format!("{name}:leaf_size=8,cost_ratio=100.0"));
+    }
+    s
+}
+
+#[test]
+fn parameters_agree_on_the_generated_scenes() {
+    for scene in common::agreement_scenes() {
+        let rays = common::agreement_rays(&scene, 600);
+        for spec in specs() {
+            common::assert_agrees(&spec, &scene, &rays);
+        }
+    }
+}
+
+fn scene_of(name: &str, triangles: Vec<Triangle>) -> Scene {
+    Scene {
+        name: name.into(),
+        triangles,
+        ..Scene::default()
+    }
+}
+
+#[test]
+fn one_triangle_and_coincident_duplicates() {
+    let t = Triangle::new(
+        Vec3A::new(0.0, 0.0, 0.0),
+        Vec3A::new(1.0, 0.0, 0.0),
+        Vec3A::new(0.0, 1.0, 0.0),
+    );
+    for scene in [
+        scene_of("one", vec![t]),
+        scene_of("duplicates", vec![t; 40]),
+    ] {
+        let rays = common::agreement_rays(&scene, 500);
+        for spec in specs() {
+            common::assert_agrees(&spec, &scene, &rays);
+        }
+    }
+}
