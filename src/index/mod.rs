@@ -14,6 +14,7 @@ pub mod near_far;
 pub mod obvhs_peer;
 pub mod octree;
 mod registry;
+pub(crate) mod stack;
 mod stats;
 pub mod wbvh;
 

@@ -21,6 +21,7 @@ use super::node::{Child, Node};
 use super::slab::{self, SlabRay};
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::index::Stats;
+use crate::index::stack::Stack;
 use crate::scene::Geometry;
 
 const STACK: usize = MAX_DEPTH as usize;
@@ -70,8 +71,7 @@ fn closest<const SAFE: bool, G: Geometry, S: Stats>(
 ) -> Option<Hit> {
     let slab_ray = SlabRay::new(ray);
     let mut best = ClosestHit::new(ray.t_max);
-    let mut stack = [(Child::default(), 0.0f32); STACK];
-    let mut sp = 0usize;
+    let mut stack = Stack::<(Child, f32), STACK>::new();
     let mut at = tree.root;
     loop {
         stats.node_visit();
@@ -91,8 +91,7 @@ fn closest<const SAFE: bool, G: Geometry, S: Stats>(
                 0b11 => {
                     let (ea, eb) = (enter.x, enter.y);
                     let (near, far, far_entry) = if eb < ea { (b, a, ea) } else { (a, b, eb) };
-                    stack[sp] = (far, far_entry);
-                    sp += 1;
+                    stack.push((far, far_entry));
                     at = near;
                     continue;
                 }
@@ -109,11 +108,9 @@ fn closest<const SAFE: bool, G: Geometry, S: Stats>(
         }
         // Pop the next child that can still hold the closest hit (entry <= best t).
         loop {
-            if sp == 0 {
+            let Some((next, entry)) = stack.pop() else {
                 return best.get();
-            }
-            sp -= 1;
-            let (next, entry) = stack[sp];
+            };
             if entry <= best.t() {
                 at = next;
                 break;
@@ -148,8 +145,7 @@ fn any<const SAFE: bool, G: Geometry, S: Stats>(
     stats: &mut S,
 ) -> bool {
     let slab_ray = SlabRay::new(ray);
-    let mut stack = [Child::default(); STACK];
-    let mut sp = 0usize;
+    let mut stack = Stack::<Child, STACK>::new();
     let mut at = tree.root;
     loop {
         stats.node_visit();
@@ -166,8 +162,7 @@ fn any<const SAFE: bool, G: Geometry, S: Stats>(
             stats.box_tests(2);
             match slab::hit_children::<SAFE>(node, &slab_ray, ray.t_max).0 {
                 0b11 => {
-                    stack[sp] = b;
-                    sp += 1;
+                    stack.push(b);
                     at = a;
                     continue;
                 }
@@ -182,10 +177,9 @@ fn any<const SAFE: bool, G: Geometry, S: Stats>(
                 _ => {}
             }
         }
-        if sp == 0 {
+        let Some(next) = stack.pop() else {
             return false;
-        }
-        sp -= 1;
-        at = stack[sp];
+        };
+        at = next;
     }
 }

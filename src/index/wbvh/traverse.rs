@@ -18,8 +18,8 @@ use crate::index::Stats;
 use crate::index::bvh::MAX_DEPTH;
 use crate::index::bvh::node::Child;
 use crate::index::bvh::slab::{SlabRay, hit_boxes4};
+use crate::index::stack::Stack;
 use crate::scene::Geometry;
-use std::mem::MaybeUninit;
 
 /// The tree as the queries see it.
 #[derive(Clone, Copy)]
@@ -41,39 +41,6 @@ impl<const C: usize> Tree<'_, C> {
 /// Room for the siblings pushed on the way down: at most 7 (8 children, one visited) per level
 /// and [`MAX_DEPTH`] levels.
 const STACK: usize = 7 * MAX_DEPTH as usize;
-
-/// A fixed-capacity stack that is not initialized up front (a zeroed array of [`STACK`]
-/// entries would cost a memset of several kilobytes per ray).
-struct Stack<T: Copy> {
-    items: [MaybeUninit<T>; STACK],
-    len: usize,
-}
-
-impl<T: Copy> Stack<T> {
-    #[inline(always)]
-    fn new() -> Self {
-        Stack {
-            items: [const { MaybeUninit::uninit() }; STACK],
-            len: 0,
-        }
-    }
-
-    /// Pushes `item`; the traversal never pushes more than [`STACK`] (see the module doc), and
-    /// an overflow would panic on the bounds check.
-    #[inline(always)]
-    fn push(&mut self, item: T) {
-        self.items[self.len].write(item);
-        self.len += 1;
-    }
-
-    #[inline(always)]
-    fn pop(&mut self) -> Option<T> {
-        self.len = self.len.checked_sub(1)?;
-        // SAFETY: every slot below the old `len` was written by `push` and never moved out
-        // (items are `Copy`).
-        Some(unsafe { self.items[self.len].assume_init() })
-    }
-}
 
 /// The hit mask over all `4C` children and their entries.
 #[inline(always)]
@@ -118,7 +85,7 @@ fn closest<const SAFE: bool, const C: usize, G: Geometry, S: Stats>(
 ) -> Option<Hit> {
     let slab_ray = SlabRay::new(ray);
     let mut best = ClosestHit::new(ray.t_max);
-    let mut stack = Stack::<(Child, f32)>::new();
+    let mut stack = Stack::<(Child, f32), STACK>::new();
     let mut at = tree.root;
     loop {
         stats.node_visit();
@@ -200,7 +167,7 @@ fn any<const SAFE: bool, const C: usize, G: Geometry, S: Stats>(
     stats: &mut S,
 ) -> bool {
     let slab_ray = SlabRay::new(ray);
-    let mut stack = Stack::<Child>::new();
+    let mut stack = Stack::<Child, STACK>::new();
     let mut at = tree.root;
     loop {
         stats.node_visit();
