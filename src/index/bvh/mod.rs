@@ -4,7 +4,7 @@
 //!
 //! - [`params`]: presets and overrides; `build`: the builder (straight into the node array), with the SAH
 //!   split finders in `binned` and `sweep`; `node`: the node layout; `slab`: the two-box slab
-//!   test; `traverse`: the queries.
+//!   test; `traverse`: the node step; `walk`: the traversal loop (shared with the wide BVH).
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids.
 
@@ -16,6 +16,7 @@ mod prim_ref;
 pub(crate) mod slab;
 mod sweep;
 mod traverse;
+pub(crate) mod walk;
 
 pub use build::MAX_DEPTH;
 pub use params::{BvhParams, Preset, SplitMethod};
@@ -89,12 +90,12 @@ impl Index for Bvh {
         ray: &Ray,
         stats: &mut S,
     ) -> Option<Hit> {
-        traverse::closest_hit(self.tree(), geom, ray, stats)
+        walk::closest_hit(&self.tree(), geom, ray, stats)
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        traverse::any_hit(self.tree(), geom, ray, stats)
+        walk::any_hit(&self.tree(), geom, ray, stats)
     }
 
     fn info(&self) -> IndexInfo {
@@ -128,10 +129,12 @@ impl Bvh {
     #[inline(always)]
     fn tree(&self) -> traverse::Tree<'_> {
         traverse::Tree {
-            root_bounds: &self.root_bounds,
-            root: self.root,
+            top: walk::Top {
+                root_bounds: &self.root_bounds,
+                root: self.root,
+                prim_ids: &self.prim_ids,
+            },
             nodes: &self.nodes,
-            prim_ids: &self.prim_ids,
         }
     }
 }

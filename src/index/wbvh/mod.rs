@@ -2,7 +2,8 @@
 //! or 8 children whose boxes are tested together, four per SIMD slab pass, front-to-back
 //! closest hit with early termination, and any-hit.
 //!
-//! - `node`: the node layout and the collapse; `traverse`: the queries.
+//! - `node`: the node layout and the collapse; `traverse`: the node step of the traversal loop
+//!   shared with the binary BVH (`bvh::walk`).
 //! - The parameters are the binary BVH's ([`BvhParams`]): the leaves are its leaves.
 //! - Leaves test their primitives one by one through [`Geometry::intersect`] (the shared
 //!   kernel); SIMD leaves are not done yet.
@@ -14,6 +15,7 @@ use super::bvh::BvhParams;
 use super::{BuildError, Bvh, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, Hit, Ray};
 use crate::index::bvh::node::Child;
+use crate::index::bvh::walk;
 use crate::scene::Geometry;
 use node::{WideNode, collapse};
 
@@ -58,12 +60,12 @@ impl<const C: usize> Index for WideBvh<C> {
         ray: &Ray,
         stats: &mut S,
     ) -> Option<Hit> {
-        traverse::closest_hit(self.tree(), geom, ray, stats)
+        walk::closest_hit(&self.tree(), geom, ray, stats)
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        traverse::any_hit(self.tree(), geom, ray, stats)
+        walk::any_hit(&self.tree(), geom, ray, stats)
     }
 
     fn info(&self) -> IndexInfo {
@@ -96,10 +98,12 @@ impl<const C: usize> WideBvh<C> {
     #[inline(always)]
     fn tree(&self) -> traverse::Tree<'_, C> {
         traverse::Tree {
-            root_bounds: &self.root_bounds,
-            root: self.root,
+            top: walk::Top {
+                root_bounds: &self.root_bounds,
+                root: self.root,
+                prim_ids: &self.prim_ids,
+            },
             nodes: &self.nodes,
-            prim_ids: &self.prim_ids,
         }
     }
 
