@@ -35,7 +35,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_threads)]
     threads: Option<usize>,
     /// Triangle kernel every index uses.
-    #[arg(long, default_value = "watertight", value_parser = parse_kernel)]
+    #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
 }
 

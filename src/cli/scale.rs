@@ -43,7 +43,7 @@ pub struct ScaleArgs {
     #[arg(long, default_value_t = 65_536, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 24)))]
     incoherent: u64,
     /// Triangle kernel every index uses.
-    #[arg(long, default_value = "watertight", value_parser = parse_kernel)]
+    #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
     /// Report directory [default: reports/scale-<generator>-<run id>].
     #[arg(long)]

@@ -211,7 +211,7 @@ fn sweep_and_write(
     let geom = p.scene.geometry();
     let setup = SweepSetup {
         geom: &geom,
-        kernel: TriangleKernelKind::Watertight,
+        kernel: TriangleKernelKind::default(),
         rays: &p.rays,
         repeats: common.repeats as usize,
     };

@@ -31,7 +31,7 @@ pub struct TraceArgs {
     #[arg(long, value_parser = parse_threads)]
     threads: Option<usize>,
     /// Triangle kernel every index uses.
-    #[arg(long, default_value = "watertight", value_parser = parse_kernel)]
+    #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
 }
 

@@ -26,7 +26,7 @@ fn case(name: &'static str, s: &Scene, rays: Vec<Ray>) -> Case {
     Case {
         name,
         scene: s.geometry(),
-        kernel: TriangleKernelKind::Watertight,
+        kernel: TriangleKernelKind::default(),
         rays,
     }
 }

@@ -190,7 +190,7 @@ mod tests {
     use super::*;
     use crate::geometry::Ray;
     use crate::geometry::triangle::Watertight;
-    use crate::index::{BruteForce, Index, IndexInfo, Stats, build_index_on};
+    use crate::index::{Index, IndexInfo, Stats, build_index_on};
     use crate::scene::{Geometry, Triangles};
 
     /// A broken index: brute force that never tests the first half of the primitives.
@@ -258,12 +258,7 @@ mod tests {
             .into_iter()
             .find(|c| c.name == "vertices-and-edges")
             .unwrap();
-        let brute = build_index_on::<BruteForce, _>(
-            "brute",
-            Triangles::<Watertight>::new(case.scene.triangles.clone()),
-            Default::default(),
-        )
-        .unwrap();
+        let brute = build_index(&IndexSpec::named("brute"), &case.scene, case.kernel).unwrap();
         let mut expected = vec![None; case.rays.len()];
         brute.closest_hits(&case.rays, &mut expected);
         let (case, expected) = (Arc::new(case), Arc::new(expected));

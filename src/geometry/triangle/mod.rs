@@ -90,8 +90,9 @@ pub enum TriangleKernelKind {
     PlaneEdges,
     Parametric,
     MollerTrumbore,
-    #[default]
     Watertight,
+    /// The default: exact hit/miss decisions at the watertight kernel's speed (see `exact`).
+    #[default]
     Exact,
 }
 
