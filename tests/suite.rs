@@ -4,7 +4,7 @@
 use accelbench::camera::Camera;
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Hit, Ray, Triangle, TriangleKernelKind};
-use accelbench::harness::suite::{ResultRow, SuiteConfig, run_suite_with};
+use accelbench::harness::suite::{ResultRow, Shard, SuiteConfig, run_suite_with};
 use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{
     BuildError, Index, IndexInfo, IndexSpec, Stats, TraceIndex, build_index, build_index_on,
@@ -61,6 +61,7 @@ fn config(indices: &[&str]) -> SuiteConfig {
         verify_budget: u64::MAX,
         brute_timing_budget: u64::MAX,
         timed: true,
+        shard: Shard::WHOLE,
     }
 }
 

@@ -1,8 +1,10 @@
 //! The `accelbench` command line: one file per subcommand, all logic in the library.
 
 mod accuracy;
+mod compare;
 mod gen_obj;
 mod info;
+mod merge;
 mod rays;
 mod render;
 mod run;
@@ -52,6 +54,10 @@ enum Command {
     Accuracy(accuracy::AccuracyArgs),
     /// Corner cases on every index against brute force, bad rays, self-intersection (reports/stress/).
     Stress(stress::StressArgs),
+    /// Run B against run A per scene x index x ray set x threads (speed ratio, noise, CI gate).
+    Compare(compare::CompareArgs),
+    /// Combine the report folders of `run --shard K/N` (every K) into one report.
+    Merge(merge::MergeArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -70,6 +76,8 @@ pub fn main() -> ExitCode {
         Command::Sweep(a) => sweep::run(a),
         Command::Accuracy(a) => accuracy::run(a),
         Command::Stress(a) => stress::run(a),
+        Command::Compare(a) => compare::run(a),
+        Command::Merge(a) => merge::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

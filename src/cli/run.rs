@@ -6,7 +6,9 @@ use super::suite_args::SuiteArgs;
 use crate::harness::suite::{check_specs, run_suite_with};
 use crate::index::{TraceIndex, build_index};
 use crate::render::{Picture, RenderOptions, write_scene_pictures};
+use crate::report::run_notes::PictureRef;
 use crate::report::suite_report::{RunMeta, prepare_report_dir, run_id_now, write_suite_report};
+use crate::report::verdict::{verdict_text, verdicts};
 use crate::scene::Scene;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -99,49 +101,30 @@ impl ScenePictures {
         }
     }
 
-    /// The summary's picture section (paths relative to the report directory).
-    fn markdown(self, report: &std::path::Path) -> anyhow::Result<String> {
+    /// The pictures written, by paths relative to the report folder `report`.
+    fn into_refs(self, report: &std::path::Path) -> anyhow::Result<Vec<PictureRef>> {
         if let Some(e) = self.error {
             return Err(e);
         }
-        let mut s = String::new();
-        if self.written.is_empty() {
-            return Ok(s);
-        }
-        s.push_str(
-            "## Pictures\n\nPer scene: the shaded render (identical through every index), then \
-             each index's heat maps of primitive tests and of node/cell visits per camera ray \
-             (fixed log scale: black 0, blue 1 ... red 1024+).\n\n",
-        );
-        for (scene, pics) in &self.written {
-            let rel = |p: &Picture| {
-                p.path
-                    .strip_prefix(report)
-                    .unwrap_or(&p.path)
-                    .display()
-                    .to_string()
-            };
-            s.push_str(&format!("### {scene}\n\n"));
-            let mut rows: Vec<(String, Vec<String>)> = Vec::new();
-            for p in pics {
-                match p.caption.rsplit_once(' ') {
-                    Some((index, _kind)) => match rows.last_mut() {
-                        Some((i, cells)) if i == index => cells.push(rel(p)),
-                        _ => rows.push((index.to_owned(), vec![rel(p)])),
-                    },
-                    None => s.push_str(&format!("![{scene} {}]({})\n\n", p.caption, rel(p))),
-                }
-            }
-            s.push_str(
-                "| index | primitive tests per ray | node/cell visits per ray |\n|---|---|---|\n",
-            );
-            for (index, cells) in rows {
-                let imgs: Vec<String> = cells.iter().map(|c| format!("![{index}]({c})")).collect();
-                s.push_str(&format!("| {index} | {} |\n", imgs.join(" | ")));
-            }
-            s.push('\n');
-        }
-        Ok(s)
+        let rel = |p: &Picture| {
+            let r = p.path.strip_prefix(report).unwrap_or(&p.path);
+            let parts: Vec<String> = r
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect();
+            parts.join("/")
+        };
+        Ok(self
+            .written
+            .iter()
+            .flat_map(|(scene, pics)| {
+                pics.iter().map(|p| PictureRef {
+                    scene: scene.clone(),
+                    caption: p.caption.clone(),
+                    path: rel(p),
+                })
+            })
+            .collect())
     }
 }
 
@@ -176,12 +159,16 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         &|s, g| build_index(s, g, kernel),
         &mut |scene, indices| pictures.add(scene, indices),
     )?;
-    let meta = RunMeta::collect(run_id, command, cfg);
-    write_suite_report(&dir, &meta, &res, &pictures.markdown(&dir)?)
+    let names = scenes.iter().map(|s| s.name.clone()).collect();
+    let meta = RunMeta::collect(run_id, command, &cfg, names);
+    write_suite_report(&dir, &meta, &res, pictures.into_refs(&dir)?)
         .with_context(|| format!("writing the report to {}", dir.display()))?;
-    let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap_or_default();
-    println!("{summary}");
-    eprintln!("report: {}", dir.display());
+    print!("{}", verdict_text(&verdicts(&res.rows), 4));
+    println!(
+        "\nreport: {} (tables: {})",
+        dir.join("index.html").display(),
+        dir.join("summary.md").display()
+    );
     if res.peer_mismatch_total > 0 {
         eprintln!(
             "note: peers ({}) differed from brute force on {} results (see mismatches.txt)",

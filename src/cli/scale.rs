@@ -5,7 +5,7 @@ use super::run::progress_bar;
 use super::suite_args::split_list;
 use super::{parse_kernel, parse_threads};
 use crate::geometry::TriangleKernelKind;
-use crate::harness::suite::{SuiteConfig, check_specs, run_suite};
+use crate::harness::suite::{Shard, SuiteConfig, check_specs, run_suite};
 use crate::harness::workload::{RaySet, SetSizes};
 use crate::index::{IndexSpec, index_names};
 use crate::report::scale_report::write_scale_report;
@@ -97,6 +97,7 @@ pub fn run(a: ScaleArgs) -> anyhow::Result<()> {
         verify_budget: 500_000_000,
         brute_timing_budget: 2_000_000_000,
         timed: true,
+        shard: Shard::WHOLE,
     };
     let pb = progress_bar(a.quiet);
     let mut rows = Vec::new();

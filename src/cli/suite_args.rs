@@ -2,7 +2,7 @@
 //! sets, at which sizes, and the defaults of a full and a `--quick` run.
 
 use crate::geometry::TriangleKernelKind;
-use crate::harness::suite::SuiteConfig;
+use crate::harness::suite::{Shard, SuiteConfig};
 use crate::harness::workload::{RaySet, SetSizes};
 use crate::index::{IndexSpec, index_names};
 use crate::scene::generators::BUILTIN_NAMES;
@@ -41,6 +41,10 @@ pub struct SuiteArgs {
     /// No progress bars.
     #[arg(long)]
     pub quiet: bool,
+    /// Run only shard K of N of the scene x index work (`2/4`); combine the shards' report
+    /// folders with `accelbench merge`.
+    #[arg(long, default_value = "1/1")]
+    pub shard: Shard,
 }
 
 /// Splits a comma-separated list whose items may carry their own `key=value,key=value`
@@ -161,6 +165,7 @@ impl SuiteArgs {
             verify_budget: if q { 200_000_000 } else { 500_000_000 },
             brute_timing_budget: if q { 20_000_000 } else { 200_000_000 },
             timed,
+            shard: self.shard,
         })
     }
 }

@@ -10,6 +10,7 @@
 //!   ray (so all indices agree pairwise);
 //! - every timed pass with the same index's counting pass.
 
+pub use super::shard::Shard;
 pub use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
 use super::suite_set::{SetRun, run_set};
 use super::workload::{self, RaySet, SetSizes};
@@ -37,6 +38,8 @@ pub struct SuiteConfig {
     pub brute_timing_budget: u64,
     /// `false` for `accelbench verify`: no timed passes, no rows.
     pub timed: bool,
+    /// The share of the scene x index work this run does ([`Shard::WHOLE`] for all of it).
+    pub shard: Shard,
 }
 
 fn specs_as_strings<S: serde::Serializer>(v: &[IndexSpec], s: S) -> Result<S::Ok, S::Error> {
@@ -96,9 +99,21 @@ pub fn run_suite_with(
 ) -> Result<SuiteResult, rayon::ThreadPoolBuildError> {
     let pools = Pools::new(&cfg.threads)?;
     let mut res = SuiteResult::default();
-    progress.set_length((scenes.len() * cfg.sets.len() * cfg.indices.len()) as u64);
-    for scene in scenes {
-        let built = run_scene(scene, cfg, &pools, progress, build, &mut res);
+    let n = cfg.indices.len();
+    let items = (0..scenes.len())
+        .flat_map(|s| (0..n).map(move |i| (s, i)))
+        .filter(|&(s, i)| cfg.shard.takes(s, i, n))
+        .count();
+    progress.set_length((items * cfg.sets.len()) as u64);
+    for (pos, scene) in scenes.iter().enumerate() {
+        let specs: Vec<&IndexSpec> = (cfg.indices.iter().enumerate())
+            .filter(|(i, _)| cfg.shard.takes(pos, *i, n))
+            .map(|(_, s)| s)
+            .collect();
+        if specs.is_empty() {
+            continue;
+        }
+        let built = run_scene(scene, &specs, cfg, &pools, progress, build, &mut res);
         let refs: Vec<&dyn TraceIndex> = built.iter().map(|b| b.as_ref()).collect();
         pools.all().install(|| after_scene(scene, &refs));
     }
@@ -114,8 +129,10 @@ pub(super) fn note(res: &mut SuiteResult, scene: &Scene, what: String, reason: S
     });
 }
 
+/// Runs `specs` (this shard's share of the indices) on every ray set of `scene`.
 fn run_scene(
     scene: &Scene,
+    specs: &[&IndexSpec],
     cfg: &SuiteConfig,
     pools: &Pools,
     progress: &ProgressBar,
@@ -124,7 +141,7 @@ fn run_scene(
 ) -> Vec<Box<dyn TraceIndex>> {
     let geom = scene.geometry();
     let mut built: Vec<Box<dyn TraceIndex>> = Vec::new();
-    for spec in &cfg.indices {
+    for spec in specs {
         progress.set_message(format!("{}: building {spec}", scene.name));
         match build(spec, &geom) {
             Ok(i) => built.push(i),

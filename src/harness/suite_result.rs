@@ -51,7 +51,7 @@ pub struct MismatchRecord {
 }
 
 /// Something the suite did not run, and why.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Note {
     pub scene: String,
     pub what: String,

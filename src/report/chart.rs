@@ -2,10 +2,13 @@
 //! labelled scatter plots (time against error).
 //!
 //! Log axes are drawn by plotting `log10(v)` on a linear axis and labelling ticks with `10^v`, so
-//! one code path serves every axis combination. Values that cannot be drawn (NaN, infinite, or
-//! `<= 0` on a log axis) are left out.
+//! one code path serves every axis combination; ticks sit at round values (`chart_axes`). Values
+//! that cannot be drawn (NaN, infinite, or `<= 0` on a log axis) are left out. Legends are drawn
+//! in a strip beside the plot, never over the data (`chart_legend`).
 
 use super::ReportError;
+use super::chart_axes::{axis_value, padded, tick_label, ticked};
+use super::chart_legend::{LEGEND_WIDTH, Mark, draw_legend};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor;
@@ -60,7 +63,8 @@ pub struct BarGroup {
     pub bars: Vec<(String, f64)>,
 }
 
-const SIZE: (u32, u32) = (960, 600);
+/// The whole chart, legend strip included, in pixels.
+const SIZE: (u32, u32) = (1100, 600);
 
 fn color(i: usize) -> RGBColor {
     const C: [RGBColor; 10] = [
@@ -76,50 +80,6 @@ fn color(i: usize) -> RGBColor {
         RGBColor(23, 190, 207),
     ];
     C[i % C.len()]
-}
-
-/// `log10(v)` on a log axis, `v` otherwise; `None` when it cannot be drawn.
-fn axis_value(v: f64, log: bool) -> Option<f64> {
-    match log {
-        true if v > 0.0 && v.is_finite() => Some(v.log10()),
-        false if v.is_finite() => Some(v),
-        _ => None,
-    }
-}
-
-/// A compact tick label: three significant digits, exponent form outside `[1e-3, 1e5)`.
-fn fmt_num(v: f64) -> String {
-    let a = v.abs();
-    if a != 0.0 && !(1e-3..1e5).contains(&a) {
-        return format!("{v:.1e}");
-    }
-    let decimals = if a == 0.0 {
-        0
-    } else {
-        (2 - a.log10().floor() as i32).max(0) as usize
-    };
-    let s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        s
-    }
-}
-
-fn tick_label(v: f64, log: bool) -> String {
-    fmt_num(if log { 10f64.powf(v) } else { v })
-}
-
-/// `lo..hi` padded by 5% (a unit around a single value).
-fn padded(lo: f64, hi: f64) -> std::ops::Range<f64> {
-    if !(lo.is_finite() && hi.is_finite()) {
-        return 0.0..1.0;
-    }
-    if hi - lo <= f64::EPSILON * hi.abs().max(1.0) {
-        return lo - 0.5..hi + 0.5;
-    }
-    let p = (hi - lo) * 0.05;
-    lo - p..hi + p
 }
 
 fn write_err(path: &Path, e: impl std::fmt::Display) -> ReportError {
@@ -210,14 +170,19 @@ fn xy_chart(
         x_range.end += (x_range.end - x_range.start) * 0.12;
     }
     let root = create_root(path)?;
+    let (plot, legend) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
     let e = |e| write_err(path, e);
-    let mut c = ChartBuilder::on(&root)
+    let mut c = ChartBuilder::on(&plot)
         .caption(&chart.title, ("sans-serif", 22))
         .margin(14)
         .x_label_area_size(46)
         .y_label_area_size(72)
-        .build_cartesian_2d(x_range, y_range.clone())
+        .build_cartesian_2d(
+            ticked(x_range, chart.log_x),
+            ticked(y_range.clone(), chart.log_y),
+        )
         .map_err(e)?;
+    let mut entries = Vec::new();
     let (lx, ly) = (chart.log_x, chart.log_y);
     let fx = move |v: &f64| tick_label(*v, lx);
     let fy = move |v: &f64| tick_label(*v, ly);
@@ -235,24 +200,23 @@ fn xy_chart(
             [(*x, y_range.start), (*x, y_range.end)],
             style,
         ))
-        .map_err(e)?
-        .label(label.to_string())
-        .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style));
+        .map_err(e)?;
+        entries.push((label.to_string(), RGBColor(100, 100, 100), Mark::Line));
     }
     for (i, (s, p)) in series.iter().zip(&pts).enumerate() {
         let col = color(i);
         let xy: Vec<(f64, f64)> = p.iter().map(|&(x, y, _)| (x, y)).collect();
-        let anno = if i >= first_line {
+        if i >= first_line {
             c.draw_series(LineSeries::new(xy.clone(), col.stroke_width(2)))
                 .map_err(e)?;
             c.draw_series(xy.iter().map(|&q| Circle::new(q, 3, col.filled())))
-                .map_err(e)?
+                .map_err(e)?;
+            entries.push((s.name.clone(), col, Mark::Line));
         } else {
             c.draw_series(xy.iter().map(|&q| Circle::new(q, 5, col.filled())))
-                .map_err(e)?
-        };
-        anno.label(s.name.clone())
-            .legend(move |(x, y)| Circle::new((x + 9, y), 4, col.filled()));
+                .map_err(e)?;
+            entries.push((s.name.clone(), col, Mark::Dot));
+        }
         if !s.labels.is_empty() {
             c.draw_series(p.iter().filter_map(|&(x, y, k)| {
                 let text = s.labels.get(k)?.clone();
@@ -261,12 +225,7 @@ fn xy_chart(
             .map_err(e)?;
         }
     }
-    c.configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(e)?;
+    draw_legend(&legend, &entries, path)?;
     root.present().map_err(e)
 }
 
@@ -292,25 +251,23 @@ pub fn bar_chart(path: &Path, chart: &Chart, groups: &[BarGroup]) -> Result<(), 
     if !lo.is_finite() {
         return Err(ReportError::NoData(chart.title.clone()));
     }
-    // Bars grow from the bottom of the axis (0 on a linear axis); a third more room on top
-    // keeps the legend clear of the tallest bars.
+    // Bars grow from the bottom of the axis (0 on a linear axis, a power of ten on a log axis).
     let y_range = if chart.log_y {
         let r = padded(lo, hi);
-        let start = r.start.floor();
-        start..r.end + (r.end - start) / 3.0
+        r.start.floor()..r.end
     } else {
-        let r = padded(lo.min(0.0), hi);
-        r.start..r.end + (r.end - r.start) / 3.0
+        padded(lo.min(0.0), hi)
     };
     let base = if chart.log_y { y_range.start } else { 0.0 };
     let root = create_root(path)?;
+    let (plot, legend) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
     let e = |e| write_err(path, e);
-    let mut c = ChartBuilder::on(&root)
+    let mut c = ChartBuilder::on(&plot)
         .caption(&chart.title, ("sans-serif", 22))
         .margin(14)
         .x_label_area_size(70)
         .y_label_area_size(72)
-        .build_cartesian_2d(0.0..groups.len() as f64, y_range)
+        .build_cartesian_2d(0.0..groups.len() as f64, ticked(y_range, chart.log_y))
         .map_err(e)?;
     let ly = chart.log_y;
     let fy = move |v: &f64| tick_label(*v, ly);
@@ -335,17 +292,12 @@ pub fn bar_chart(path: &Path, chart: &Chart, groups: &[BarGroup]) -> Result<(), 
                 col.filled(),
             ))
         });
-        c.draw_series(rects)
-            .map_err(e)?
-            .label(name.to_string())
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], col.filled()));
+        c.draw_series(rects).map_err(e)?;
     }
-    c.configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(e)?;
+    let entries: Vec<_> = (names.iter().enumerate())
+        .map(|(si, n)| (n.to_string(), color(si), Mark::Bar))
+        .collect();
+    draw_legend(&legend, &entries, path)?;
     // Category names under their groups, in pixel coordinates below the axis.
     let style = ("sans-serif", 13)
         .into_font()
@@ -357,7 +309,7 @@ pub fn bar_chart(path: &Path, chart: &Chart, groups: &[BarGroup]) -> Result<(), 
     let bottom = c.backend_coord(&(0.0, base)).1 + 8;
     for (gi, g) in groups.iter().enumerate() {
         let x = c.backend_coord(&(gi as f64 + 0.5, base)).0;
-        root.draw(&Text::new(g.name.clone(), (x, bottom), style.clone()))
+        plot.draw(&Text::new(g.name.clone(), (x, bottom), style.clone()))
             .map_err(e)?;
     }
     root.present().map_err(e)
@@ -407,15 +359,5 @@ mod tests {
             line_chart(&dir.path().join("e.svg"), &chart, &empty),
             Err(ReportError::NoData(_))
         ));
-    }
-
-    #[test]
-    fn tick_labels_are_compact() {
-        assert_eq!(fmt_num(2.5), "2.5");
-        assert_eq!(fmt_num(158.489), "158");
-        assert_eq!(fmt_num(0.012589), "0.0126");
-        assert_eq!(fmt_num(1000.0), "1000");
-        assert_eq!(fmt_num(1e6), "1.0e6");
-        assert_eq!(tick_label(2.0, true), "100");
     }
 }

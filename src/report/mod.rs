@@ -3,12 +3,21 @@
 //! open in any browser.
 
 mod chart;
+mod chart_axes;
+mod chart_legend;
+pub mod cost_fit;
 mod csv_out;
+mod html;
+mod html_sections;
+pub mod merge;
+pub mod run_compare;
 mod run_meta;
+pub mod run_notes;
 pub mod scale_report;
 mod suite_plots;
 pub mod suite_report;
 pub mod sweep_report;
+pub mod verdict;
 
 pub use chart::{
     BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart, scatter_chart_with_lines,
@@ -23,6 +32,19 @@ use thiserror::Error;
 pub enum ReportError {
     #[error("cannot write {path}: {message}")]
     Write { path: PathBuf, message: String },
+    #[error("cannot read {path}: {message}")]
+    Read { path: PathBuf, message: String },
+    #[error("cannot merge: {0}")]
+    Merge(String),
     #[error("chart '{0}' has no finite data to draw")]
     NoData(String),
+}
+
+/// `v` with `digits` decimals, or an en dash when it is not finite (a table cell).
+pub(crate) fn fixed(v: f64, digits: usize) -> String {
+    if v.is_finite() {
+        format!("{v:.digits$}")
+    } else {
+        "–".into()
+    }
 }

@@ -1,11 +1,12 @@
 //! `meta.json`: the facts about a run that are not in its rows (date, git revision, machine,
 //! command, configuration).
 
-use crate::harness::suite::SuiteConfig;
-use serde::Serialize;
+use crate::harness::suite::{Shard, SuiteConfig};
+use serde::{Deserialize, Serialize};
 
-/// Facts about the run that are not in the rows.
-#[derive(Debug, Clone, Serialize)]
+/// Facts about the run that are not in the rows. `accelbench merge` reads it back from the
+/// shards' `meta.json`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RunMeta {
     pub run_id: String,
     /// UTC, `YYYY-MM-DDTHH:MM:SSZ`.
@@ -15,12 +16,28 @@ pub struct RunMeta {
     pub cores: usize,
     pub os: String,
     pub command: String,
-    pub config: SuiteConfig,
+    /// Names of the run's scenes in run order (the order of rows and of shard work items).
+    pub scenes: Vec<String>,
+    /// Thread counts of the timed passes, ascending.
+    pub threads: Vec<usize>,
+    /// The triangle kernel's name.
+    pub kernel: String,
+    /// Timed repeats per measurement.
+    pub repeats: usize,
+    /// The share of the work this run did (`1/1` for a whole run).
+    pub shard: Shard,
+    /// Every parameter of the run: the suite configuration as JSON.
+    pub config: serde_json::Value,
 }
 
 impl RunMeta {
     /// Collects the machine facts and the date now.
-    pub fn collect(run_id: String, command: String, config: SuiteConfig) -> RunMeta {
+    pub fn collect(
+        run_id: String,
+        command: String,
+        config: &SuiteConfig,
+        scenes: Vec<String>,
+    ) -> RunMeta {
         RunMeta {
             run_id,
             date: utc_now(),
@@ -29,7 +46,12 @@ impl RunMeta {
             cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
             os: std::env::consts::OS.to_owned(),
             command,
-            config,
+            scenes,
+            threads: config.threads.clone(),
+            kernel: config.kernel.name().to_owned(),
+            repeats: config.repeats,
+            shard: config.shard,
+            config: serde_json::to_value(config).expect("the configuration serializes"),
         }
     }
 }

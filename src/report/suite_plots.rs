@@ -54,7 +54,7 @@ pub(super) fn write_plots(
     rows: &[ResultRow],
 ) -> Result<Vec<(String, String)>, ReportError> {
     let mut out = Vec::new();
-    let min_threads = meta.config.threads.iter().copied().min().unwrap_or(1);
+    let min_threads = meta.threads.iter().copied().min().unwrap_or(1);
     let mut draw = |title: String, file: String, y: &str, log_y: bool, g: Vec<BarGroup>| {
         if g.is_empty() {
             return Ok::<(), ReportError>(());
@@ -142,6 +142,10 @@ pub(super) fn write_plots(
             }
             series.push(Series::new(index, pts));
         }
+        let ideal = threads
+            .iter()
+            .map(|&t| (t as f64, t as f64 / min_threads as f64));
+        series.push(Series::new("ideal (linear)", ideal.collect()));
         let title = "Thread scaling (geometric mean over scenes and ray sets)";
         let c = Chart::new(title, "threads", "speed-up over the fewest threads");
         line_chart(&dir.join("thread_scaling.svg"), &c, &series)?;

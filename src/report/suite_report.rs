@@ -1,10 +1,16 @@
 //! The report of `accelbench run` under `reports/<run id>/`: `results.csv` (one row per scene x
 //! index x ray set x threads), `meta.json` (date, git revision, machine, parameters),
-//! `summary.md` (tables a person can read) and SVG plots (Mrays/s, build time, memory, tests per
-//! ray, thread scaling), plus `mismatches.txt` when verification failed.
+//! `notes.json` (verification, notes, pictures), `summary.md` (tables a person can read),
+//! `index.html` (the verdict first, then why) and SVG plots (Mrays/s, build time, memory, tests
+//! per ray, thread scaling), plus `mismatches.txt` when verification found mismatches.
 
+use super::cost_fit::{CostFit, cost_fits};
+use super::fixed as fmt_f;
+use super::html::write_html;
 pub use super::run_meta::{RunMeta, run_id_now};
+use super::run_notes::{PictureRef, RunNotes, pictures_markdown};
 use super::suite_plots::{scenes, uniq, uniq_threads, write_plots};
+use super::verdict::verdicts;
 use super::{ReportError, write_csv};
 use crate::harness::suite::{ResultRow, SuiteResult};
 use std::fmt::Write as _;
@@ -29,22 +35,19 @@ pub fn prepare_report_dir(dir: &Path) -> Result<(), ReportError> {
         .map_err(|e| err(format!("cannot write in the folder ({e})")))
 }
 
-/// Writes the whole report into `dir`.
+/// Writes the whole report of a suite run into `dir`: `mismatches.txt` when there are any,
+/// then [`write_report`].
 pub fn write_suite_report(
     dir: &Path,
     meta: &RunMeta,
     res: &SuiteResult,
-    extra_md: &str,
+    pictures: Vec<PictureRef>,
 ) -> Result<(), ReportError> {
     let err = |e: std::io::Error| ReportError::Write {
-        path: dir.to_owned(),
+        path: dir.join("mismatches.txt"),
         message: e.to_string(),
     };
     std::fs::create_dir_all(dir).map_err(err)?;
-    write_csv(&dir.join("results.csv"), &res.rows)?;
-    let json = serde_json::to_string_pretty(meta).expect("meta serializes");
-    std::fs::write(dir.join("meta.json"), json).map_err(err)?;
-    let plots = write_plots(dir, meta, &res.rows)?;
     if res.mismatch_total + res.peer_mismatch_total > 0 {
         let mut t = String::new();
         for m in &res.mismatches {
@@ -60,16 +63,32 @@ pub fn write_suite_report(
         }
         std::fs::write(dir.join("mismatches.txt"), t).map_err(err)?;
     }
-    let md = summary_markdown(meta, res, &plots, extra_md);
-    std::fs::write(dir.join("summary.md"), md).map_err(err)
+    write_report(dir, meta, &res.rows, &RunNotes::of(res, pictures))
 }
 
-fn fmt_f(v: f64, digits: usize) -> String {
-    if v.is_finite() {
-        format!("{v:.digits$}")
-    } else {
-        "–".into()
-    }
+/// Writes `results.csv`, `meta.json`, `notes.json`, the charts, `summary.md` and `index.html`
+/// of `rows` into `dir` (a suite run's, or the rows `accelbench merge` combined).
+pub fn write_report(
+    dir: &Path,
+    meta: &RunMeta,
+    rows: &[ResultRow],
+    notes: &RunNotes,
+) -> Result<(), ReportError> {
+    let err = |e: std::io::Error| ReportError::Write {
+        path: dir.to_owned(),
+        message: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(err)?;
+    write_csv(&dir.join("results.csv"), rows)?;
+    let json = serde_json::to_string_pretty(meta).expect("meta serializes");
+    std::fs::write(dir.join("meta.json"), json).map_err(err)?;
+    let json = serde_json::to_string_pretty(notes).expect("notes serialize");
+    std::fs::write(dir.join("notes.json"), json).map_err(err)?;
+    let plots = write_plots(dir, meta, rows)?;
+    let fits = cost_fits(rows);
+    let md = summary_markdown(meta, rows, notes, &fits, &plots);
+    std::fs::write(dir.join("summary.md"), md).map_err(err)?;
+    write_html(dir, meta, rows, notes, &verdicts(rows), &fits, &plots)
 }
 
 /// Rows of one index, in first-seen order of the indices.
@@ -164,28 +183,47 @@ fn fallback_line(rows: &[&ResultRow]) -> String {
     )
 }
 
+/// The fitted cost per node step and per primitive test of each index ([`cost_fits`]).
+fn cost_table(fits: &[CostFit]) -> String {
+    let mut s = "## Cost breakdown\n\nPer index, fitted by least squares over this run's scenes \
+                 and ray sets at the fewest threads: ns per ray = a * steps per ray + b * tests \
+                 per ray + c (c with six or more points; costs kept non-negative).\n\n\
+                 | index | ns per step (a) | ns per test (b) | ns per ray (c) | R² | points |\n\
+                 |---|---:|---:|---:|---:|---:|\n"
+        .to_owned();
+    for f in fits {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} |",
+            f.index,
+            fmt_f(f.ns_per_step, 2),
+            fmt_f(f.ns_per_test, 2),
+            fmt_f(f.ns_per_ray, 1),
+            fmt_f(f.r2, 3),
+            f.points
+        );
+    }
+    s.push('\n');
+    s
+}
+
 /// The human-readable summary.
 pub fn summary_markdown(
     meta: &RunMeta,
-    res: &SuiteResult,
+    rows: &[ResultRow],
+    notes: &RunNotes,
+    fits: &[CostFit],
     plots: &[(String, String)],
-    extra_md: &str,
 ) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# accelbench run {}\n", meta.run_id);
     let _ = writeln!(
         s,
         "{} · git {} · {} ({} cores) · kernel {} · threads {:?} · {} timed repeats (median)\n",
-        meta.date,
-        meta.git_revision,
-        meta.cpu,
-        meta.cores,
-        meta.config.kernel,
-        meta.config.threads,
-        meta.config.repeats
+        meta.date, meta.git_revision, meta.cpu, meta.cores, meta.kernel, meta.threads, meta.repeats
     );
     let _ = writeln!(s, "Command: `{}`\n", meta.command);
-    if res.peer_mismatch_total > 0 {
+    if notes.peer_mismatch_total > 0 {
         let _ = writeln!(
             s,
             "**Peers** ({}) returned {} results that differ from brute force: obvhs traverses \
@@ -193,10 +231,10 @@ pub fn summary_markdown(
              very-near hits. Reported in the `mismatches` column and `mismatches.txt`, not a \
              failure of the run.\n",
             crate::index::peer_names().join(", "),
-            res.peer_mismatch_total
+            notes.peer_mismatch_total
         );
     }
-    if res.mismatch_total == 0 {
+    if notes.mismatch_total == 0 {
         let _ = writeln!(
             s,
             "**Verification: passed.** Every one of our indices returned brute force's hits bit \
@@ -207,12 +245,12 @@ pub fn summary_markdown(
             s,
             "**Verification: FAILED, {} mismatching results** (first ones in `mismatches.txt`, \
              with the rays' bits).\n",
-            res.mismatch_total
+            notes.mismatch_total
         );
     }
-    let threads = uniq_threads(&res.rows);
-    for scene in scenes(&res.rows) {
-        let rows: Vec<&ResultRow> = res.rows.iter().filter(|r| r.scene == scene).collect();
+    let threads = uniq_threads(rows);
+    for scene in scenes(rows) {
+        let rows: Vec<&ResultRow> = rows.iter().filter(|r| r.scene == scene).collect();
         let _ = writeln!(s, "## {scene} ({} primitives)\n", rows[0].primitives);
         let _ = writeln!(s, "{}", build_table(&rows));
         for set in uniq(rows.iter().map(|r| r.ray_set.as_str())) {
@@ -225,26 +263,27 @@ pub fn summary_markdown(
             );
             s.push_str(&fallback_line(&in_set));
         }
-        for v in res.verification.iter().filter(|v| v.scene == scene) {
+        for v in notes.verification.iter().filter(|v| v.scene == scene) {
             let _ = writeln!(s, "- verification, {}: {}", v.what, v.reason);
         }
-        for n in res.notes.iter().filter(|n| n.scene == scene) {
+        for n in notes.notes.iter().filter(|n| n.scene == scene) {
             let _ = writeln!(s, "- {}: {}", n.what, n.reason);
         }
         s.push('\n');
     }
     // Scenes with no rows at all (every index failed, or the camera failed).
-    for n in &res.notes {
-        if !res.rows.iter().any(|r| r.scene == n.scene) {
+    for n in &notes.notes {
+        if !rows.iter().any(|r| r.scene == n.scene) {
             let _ = writeln!(s, "- {} / {}: {}", n.scene, n.what, n.reason);
         }
     }
+    s.push_str(&cost_table(fits));
     if !plots.is_empty() {
         let _ = writeln!(s, "## Plots\n");
         for (title, file) in plots {
             let _ = writeln!(s, "### {title}\n\n![{title}]({file})\n");
         }
     }
-    s.push_str(extra_md);
+    s.push_str(&pictures_markdown(notes));
     s
 }
