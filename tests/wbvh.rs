@@ -93,3 +93,31 @@ fn one_triangle_and_coincident_duplicates() {
         }
     }
 }
+
+/// The `leaf_blocks` figure of an index's info.
+fn leaf_blocks<I: Index>(index: &I) -> f64 {
+    let info = index.info();
+    let found = info.extra.iter().find(|(k, _)| k == "leaf_blocks");
+    found.expect("bvh4/bvh8 report leaf_blocks").1
+}
+
+/// Triangle-only scenes get SIMD leaves (triangles copied into blocks of four, at least one
+/// block per leaf, at most one partly empty block per leaf); scenes with spheres keep leaves of
+/// primitive ids. The agreement tests then check both kinds of leaves against brute force.
+#[test]
+fn triangle_scenes_get_simd_leaves_and_mixed_scenes_keep_id_leaves() {
+    use accelbench::geometry::triangle::Exact;
+    use accelbench::scene::Mixed;
+    let scene = generators::generate("soup", 3000, 5).unwrap();
+    let n = scene.triangles.len() as f64;
+    let geom = Triangles::<Exact>::new(scene.triangles.clone().into());
+    let bvh8 = Bvh8::build(&geom, &BvhParams::default()).unwrap();
+    let (blocks, leaves) = (leaf_blocks(&bvh8), bvh8.info().leaves as f64);
+    assert!(blocks >= (n / 4.0).ceil() && blocks >= leaves && blocks < n / 4.0 + leaves);
+    let mixed = generators::generate("mixed", 3000, 5).unwrap();
+    let geom = Mixed::<Exact>::new(mixed.triangles.into(), mixed.spheres.into());
+    assert_eq!(
+        leaf_blocks(&Bvh4::build(&geom, &BvhParams::default()).unwrap()),
+        0.0
+    );
+}

@@ -6,6 +6,7 @@
 use crate::geometry::clip::triangle_clipped_bounds;
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
+use crate::geometry::triangle::lanes::TriangleBlock;
 use crate::geometry::triangle::{Exact, MollerTrumbore, Parametric, PlaneEdges, Watertight};
 use crate::geometry::{Aabb, Ray, Shape, Sphere, Triangle, TriangleKernel, TriangleKernelKind};
 use glam::Vec3A;
@@ -61,6 +62,26 @@ pub trait Geometry: Clone + Send + Sync + 'static {
     /// planes of autopartition BSPs); `None` for curved or zero-area primitives.
     fn own_plane(&self, _prim: u32) -> Option<(Vec3A, f32)> {
         None
+    }
+    /// The triangle primitive `prim` is, when this geometry tests it with the kernel's lane
+    /// form in [`Geometry::intersect_block`] (triangle-only scenes); `None` otherwise, and
+    /// indices then keep leaves of primitive ids.
+    fn block_triangle(&self, _prim: u32) -> Option<Triangle> {
+        None
+    }
+    /// [`Geometry::intersect`] on the four lanes of `block`, whose corners are copies of
+    /// `block_triangle(block.ids[i])`: bit `i` of the mask is set and `t[i]` holds the `t`
+    /// exactly when `intersect(block.ids[i], ray, t_max)` is `Some(t)`, bit for bit.
+    #[inline]
+    fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
+        let mut out = (0, [0.0; 4]);
+        for (i, &prim) in block.ids.iter().enumerate() {
+            if let Some(t) = self.intersect(prim, ray, t_max) {
+                out.0 |= 1 << i;
+                out.1[i] = t;
+            }
+        }
+        out
     }
 }
 
@@ -176,6 +197,32 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     }
     fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
         self.tris[prim as usize].normal()
+    }
+    fn block_triangle(&self, prim: u32) -> Option<Triangle> {
+        Some(self.tris[prim as usize])
+    }
+    /// The kernel's lane form decides what it can; undecided lanes take the scalar kernel;
+    /// every lane's `t` then goes through the same [`accept`] as in [`Geometry::intersect`].
+    #[inline]
+    fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
+        let lanes = K::intersect_lanes(&block.tris, ray);
+        let mut todo = lanes.hit | lanes.scalar;
+        let mut out = (0, [0.0; 4]);
+        while todo != 0 {
+            let i = todo.trailing_zeros() as usize;
+            todo &= todo - 1;
+            let tri = block.tris.triangle(i);
+            let t = if lanes.scalar >> i & 1 == 1 {
+                K::intersect(&tri, ray, ray.t_max)
+            } else {
+                Some(lanes.t[i])
+            };
+            if let Some(t) = accept(t, tri.bounds(), ray, t_max) {
+                out.0 |= 1 << i;
+                out.1[i] = t;
+            }
+        }
+        out
     }
 }
 

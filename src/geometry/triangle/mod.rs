@@ -6,6 +6,7 @@
 //! as brute force.
 
 pub mod exact;
+pub mod lanes;
 mod moller_trumbore;
 mod parametric;
 mod plane_edges;
@@ -81,6 +82,12 @@ pub trait TriangleKernel: Copy + Default + Send + Sync + 'static {
     const NAME: &'static str;
     /// `Some(t)` when the ray hits the triangle at `t` in `[ray.t_min, t_max]`.
     fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32>;
+    /// The lane form on up to four triangles (contract in [`lanes`]); by default no lane is
+    /// decided, so every triangle goes through [`TriangleKernel::intersect`].
+    #[inline(always)]
+    fn intersect_lanes(_tris: &lanes::TriangleLanes, _ray: &Ray) -> lanes::LaneHits {
+        lanes::LaneHits::UNDECIDED
+    }
 }
 
 /// The selectable triangle kernels (run-time name of a [`TriangleKernel`]).

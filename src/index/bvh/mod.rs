@@ -4,12 +4,14 @@
 //!
 //! - [`params`]: presets and overrides; `build`: the builder (straight into the node array), with the SAH
 //!   split finders in `binned` and `sweep`; `node`: the node layout; `slab`: the two-box slab
-//!   test; `traverse`: the node step; `walk`: the traversal loop (shared with the wide BVH).
+//!   test; `traverse`: the node step; `walk`: the traversal loop and `leaves` the leaf tests
+//!   (both shared with the wide BVH).
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids.
 
 mod binned;
 mod build;
+pub(crate) mod leaves;
 pub(crate) mod node;
 pub mod params;
 mod prim_ref;
@@ -132,7 +134,7 @@ impl Bvh {
             top: walk::Top {
                 root_bounds: &self.root_bounds,
                 root: self.root,
-                prim_ids: &self.prim_ids,
+                leaves: leaves::Leaves::Ids(&self.prim_ids),
             },
             nodes: &self.nodes,
         }

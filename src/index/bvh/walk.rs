@@ -9,11 +9,12 @@
 //! `t` no smaller than the entry of any box containing the primitive, and the box tests are
 //! the conservative, monotone [`Aabb::ray_interval`] (see [`super::slab`]), so a skipped box
 //! can hold no hit that beats or ties the best one. Leaves test their primitives through
-//! [`Geometry::intersect`] in id order.
+//! [`Geometry::intersect`] or its lane-wise block form (see [`super::leaves`]).
 //!
 //! Each query picks the slab variant once per ray ([`SlabRay::finite`]) and runs a loop
 //! monomorphized on it.
 
+use super::leaves::Leaves;
 use super::node::Child;
 use super::slab::SlabRay;
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
@@ -22,27 +23,18 @@ use crate::index::stack::Stack;
 use crate::scene::Geometry;
 
 /// What every box tree has besides its inner nodes: the box of the whole tree, the root (an
-/// inner node or a leaf) and the primitive ids in leaf order.
+/// inner node or a leaf) and the leaves' contents.
 #[derive(Clone, Copy)]
 pub struct Top<'a> {
     pub root_bounds: &'a Aabb,
     pub root: Child,
-    pub prim_ids: &'a [u32],
+    pub leaves: Leaves<'a>,
 }
 
-impl Top<'_> {
-    /// The primitive ids of a leaf.
-    #[inline(always)]
-    fn prims(&self, leaf: Child) -> &[u32] {
-        let first = leaf.index as usize;
-        &self.prim_ids[first..first + leaf.count as usize]
-    }
-}
-
-/// A tree of boxes whose inner nodes the loop visits by index and whose leaves are runs of
-/// primitive ids. `N` bounds the entries the node steps can leave on the stack.
+/// A tree of boxes whose inner nodes the loop visits by index and whose leaves are
+/// [`Leaves`]. `N` bounds the entries the node steps can leave on the stack.
 pub trait BoxTree<const N: usize> {
-    /// The root, its box and the leaves' primitive ids.
+    /// The root, its box and the leaves.
     fn top(&self) -> Top<'_>;
     /// Closest-hit step at inner node `node`: pushes the hit children but the nearest with their
     /// entries, farthest first, and returns the nearest; `None` when no child is hit.
@@ -99,12 +91,7 @@ fn closest<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stat
     loop {
         stats.node_visit();
         if at.is_leaf() {
-            for &prim in top.prims(at) {
-                stats.prim_test();
-                if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                    best.offer(t, prim);
-                }
-            }
+            top.leaves.closest(at, geom, ray, &mut best, stats);
         } else if let Some(next) =
             tree.closest_step::<SAFE, S>(at.index, &slab_ray, best.t(), stats, &mut stack)
         {
@@ -162,11 +149,8 @@ fn any<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     loop {
         stats.node_visit();
         if at.is_leaf() {
-            for &prim in top.prims(at) {
-                stats.prim_test();
-                if geom.intersect(prim, ray, ray.t_max).is_some() {
-                    return true;
-                }
+            if top.leaves.any(at, geom, ray, stats) {
+                return true;
             }
         } else if let Some(next) =
             tree.any_step::<SAFE, S>(at.index, &slab_ray, ray.t_max, stats, &mut stack)

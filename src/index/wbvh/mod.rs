@@ -5,8 +5,9 @@
 //! - `node`: the node layout and the collapse; `traverse`: the node step of the traversal loop
 //!   shared with the binary BVH (`bvh::walk`).
 //! - The parameters are the binary BVH's ([`BvhParams`]): the leaves are its leaves.
-//! - Leaves test their primitives one by one through [`Geometry::intersect`] (the shared
-//!   kernel); SIMD leaves are not done yet.
+//! - Leaves of triangle-only scenes hold copies of their triangles in blocks of four, tested
+//!   lane-wise by the kernel's lane form; other scenes' leaves hold primitive ids
+//!   ([`LeafStore`], shared with the binary BVH).
 
 mod node;
 mod traverse;
@@ -14,6 +15,7 @@ mod traverse;
 use super::bvh::BvhParams;
 use super::{BuildError, Bvh, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, Hit, Ray};
+use crate::index::bvh::leaves::LeafStore;
 use crate::index::bvh::node::Child;
 use crate::index::bvh::walk;
 use crate::scene::Geometry;
@@ -25,7 +27,8 @@ pub struct WideBvh<const C: usize> {
     root_bounds: Aabb,
     root: Child,
     nodes: Vec<WideNode<C>>,
-    prim_ids: Vec<u32>,
+    leaf_store: LeafStore,
+    prim_refs: usize,
     leaves: usize,
     depth: u32,
 }
@@ -42,12 +45,26 @@ impl<const C: usize> Index for WideBvh<C> {
         const { assert!(C == 1 || C == 2, "the traversal's buffers hold 8 children") };
         let binary = Bvh::build(geom, params)?;
         let (root_bounds, root, nodes, prim_ids) = binary.parts();
-        let wide = collapse::<C>(root, nodes);
+        let mut wide = collapse::<C>(root, nodes);
+        let leaf_refs = wide.nodes.iter_mut().flat_map(|n| {
+            let kids = n.valid.count_ones() as usize;
+            n.children.iter_mut().flatten().take(kids)
+        });
+        let root_ref = Some(&mut wide.root);
+        let leaf_store = LeafStore::new(
+            geom,
+            prim_ids.to_vec(),
+            root_ref
+                .into_iter()
+                .chain(leaf_refs)
+                .filter(|c| c.is_leaf()),
+        );
         Ok(WideBvh {
             root_bounds,
             root: wide.root,
             nodes: wide.nodes,
-            prim_ids: prim_ids.to_vec(),
+            leaf_store,
+            prim_refs: prim_ids.len(),
             leaves: wide.leaves,
             depth: wide.depth,
         })
@@ -71,19 +88,20 @@ impl<const C: usize> Index for WideBvh<C> {
     fn info(&self) -> IndexInfo {
         let memory_bytes = size_of::<Aabb>()
             + self.nodes.len() * size_of::<WideNode<C>>()
-            + self.prim_ids.len() * 4;
+            + self.leaf_store.bytes();
         let children: u32 = self.nodes.iter().map(|n| n.valid.count_ones()).sum();
         IndexInfo {
             nodes: self.nodes.len() + self.leaves,
             leaves: self.leaves,
             depth: self.depth as usize,
             memory_bytes,
-            prim_refs: self.prim_ids.len(),
+            prim_refs: self.prim_refs,
             extra: vec![
                 (
                     "bytes_per_prim".into(),
-                    memory_bytes as f64 / self.prim_ids.len() as f64,
+                    memory_bytes as f64 / self.prim_refs as f64,
                 ),
+                ("leaf_blocks".into(), self.leaf_store.blocks() as f64),
                 (
                     "children_per_node".into(),
                     children as f64 / self.nodes.len().max(1) as f64,
@@ -101,7 +119,7 @@ impl<const C: usize> WideBvh<C> {
             top: walk::Top {
                 root_bounds: &self.root_bounds,
                 root: self.root,
-                prim_ids: &self.prim_ids,
+                leaves: self.leaf_store.leaves(),
             },
             nodes: &self.nodes,
         }
@@ -119,7 +137,7 @@ impl<const C: usize> WideBvh<C> {
         for n in &self.nodes {
             kids[n.valid.count_ones() as usize] += 1;
             for i in 0..n.valid.count_ones() as usize {
-                let c = n.children[i / 4][i % 4];
+                let c = n.child(i);
                 if c.is_leaf() {
                     leaf(c);
                 }

@@ -1,19 +1,24 @@
 //! Wide nodes and the collapse of the binary SAH tree into them.
 //!
-//! A node of `C` chunks holds up to `4 * C` children: per chunk, the children's boxes in
-//! structure-of-arrays form ([`Boxes4`], one SIMD slab test per chunk) and their references.
-//! Lanes past `len` are unused (zero boxes) and masked out of every test.
+//! A node of `C` chunks holds up to `4 * C` children: their boxes in structure-of-arrays form,
+//! per axis the `min` planes of all children in `4 * C` consecutive lanes (likewise `max`), so
+//! one SIMD slab pass tests four (`C = 1`, [`Boxes4`]) or eight (`C = 2`, one AVX pass) boxes,
+//! and their references. Lanes past the children (bit clear in `valid`) hold zero boxes and are
+//! masked out of every test.
 
 use crate::geometry::Aabb;
 use crate::index::bvh::node::{Child, Node};
-use crate::index::bvh::slab::Boxes4;
+use crate::index::bvh::slab::{Boxes4, SlabRay, hit_boxes4, hit_boxes8};
 use glam::Vec4;
 
 /// Up to `4 * C` children.
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(32))]
 pub struct WideNode<const C: usize> {
-    pub boxes: [Boxes4; C],
+    /// `min[axis][chunk][lane]`: child `4 * chunk + lane`'s lower plane on `axis`.
+    pub min: [[Vec4; C]; 3],
+    /// Upper planes, as `min`.
+    pub max: [[Vec4; C]; 3],
     pub children: [[Child; 4]; C],
     /// Bit `i` set when child `i` exists (children fill lanes `0..n`).
     pub valid: u32,
@@ -22,24 +27,49 @@ pub struct WideNode<const C: usize> {
 impl<const C: usize> WideNode<C> {
     fn new(kids: &[(Aabb, Child)]) -> WideNode<C> {
         debug_assert!((2..=4 * C).contains(&kids.len()) || kids.len() == 1);
-        let zero = Boxes4 {
-            min: [Vec4::ZERO; 3],
-            max: [Vec4::ZERO; 3],
-        };
         let mut n = WideNode {
-            boxes: [zero; C],
+            min: [[Vec4::ZERO; C]; 3],
+            max: [[Vec4::ZERO; C]; 3],
             children: [[Child::default(); 4]; C],
             valid: (1u32 << kids.len()) - 1,
         };
         for (i, (b, child)) in kids.iter().enumerate() {
             let (chunk, lane) = (i / 4, i % 4);
             for k in 0..3 {
-                n.boxes[chunk].min[k][lane] = b.min[k];
-                n.boxes[chunk].max[k][lane] = b.max[k];
+                n.min[k][chunk][lane] = b.min[k];
+                n.max[k][chunk][lane] = b.max[k];
             }
             n.children[chunk][lane] = *child;
         }
         n
+    }
+
+    /// Child `i`'s reference.
+    #[inline(always)]
+    pub fn child(&self, i: usize) -> Child {
+        self.children[i / 4][i % 4]
+    }
+
+    /// The slab test of every child against `[ray.t_min, t_max]`: the mask of the hit children
+    /// (bit `i` for child `i`) and the entry distances (`enter[i]`, meaningful where hit).
+    #[inline(always)]
+    pub fn hit<const SAFE: bool>(&self, ray: &SlabRay, t_max: f32) -> (u32, [f32; 8]) {
+        let (mask, enter) = if C == 2 {
+            // SAFETY: `C == 2`, so both are the same type.
+            let eight =
+                |p: &[[Vec4; C]; 3]| unsafe { &*std::ptr::from_ref(p).cast::<[[Vec4; 2]; 3]>() };
+            hit_boxes8::<SAFE>(eight(&self.min), eight(&self.max), ray, t_max)
+        } else {
+            let b = Boxes4 {
+                min: [0, 1, 2].map(|k| self.min[k][0]),
+                max: [0, 1, 2].map(|k| self.max[k][0]),
+            };
+            let (m, e) = hit_boxes4::<SAFE>(&b, ray, t_max);
+            let mut enter = [0.0; 8];
+            enter[..4].copy_from_slice(&e.to_array());
+            (m, enter)
+        };
+        (mask & self.valid, enter)
     }
 }
 

@@ -13,7 +13,7 @@ use super::node::WideNode;
 use crate::index::Stats;
 use crate::index::bvh::MAX_DEPTH;
 use crate::index::bvh::node::Child;
-use crate::index::bvh::slab::{SlabRay, hit_boxes4};
+use crate::index::bvh::slab::SlabRay;
 use crate::index::bvh::walk::{BoxTree, Top};
 use crate::index::stack::Stack;
 
@@ -25,23 +25,6 @@ pub const STACK: usize = 7 * MAX_DEPTH as usize;
 pub struct Tree<'a, const C: usize> {
     pub top: Top<'a>,
     pub nodes: &'a [WideNode<C>],
-}
-
-/// The hit mask over all `4C` children and their entries.
-#[inline(always)]
-fn hit_node<const SAFE: bool, const C: usize>(
-    node: &WideNode<C>,
-    ray: &SlabRay,
-    t_max: f32,
-) -> (u32, [[f32; 4]; C]) {
-    let mut mask = 0u32;
-    let mut enter = [[0.0f32; 4]; C];
-    for (k, boxes) in node.boxes.iter().enumerate() {
-        let (m, e) = hit_boxes4::<SAFE>(boxes, ray, t_max);
-        mask |= m << (4 * k);
-        enter[k] = e.to_array();
-    }
-    (mask & node.valid, enter)
 }
 
 impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
@@ -61,7 +44,7 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
     ) -> Option<Child> {
         let node = &self.nodes[node as usize];
         stats.box_tests(node.valid.count_ones());
-        let (mut mask, enter) = hit_node::<SAFE, C>(node, ray, t_max);
+        let (mut mask, enter) = node.hit::<SAFE>(ray, t_max);
         if mask == 0 {
             return None;
         }
@@ -71,7 +54,7 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
         while mask != 0 {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let item = (node.children[i / 4][i % 4], enter[i / 4][i % 4]);
+            let item = (node.child(i), enter[i]);
             let mut j = n;
             while j > 0 && hit[j - 1].1 < item.1 {
                 hit[j] = hit[j - 1];
@@ -97,16 +80,16 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
     ) -> Option<Child> {
         let node = &self.nodes[node as usize];
         stats.box_tests(node.valid.count_ones());
-        let (mut mask, _) = hit_node::<SAFE, C>(node, ray, t_max);
+        let (mut mask, _) = node.hit::<SAFE>(ray, t_max);
         if mask == 0 {
             return None;
         }
         while mask & (mask - 1) != 0 {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            stack.push(node.children[i / 4][i % 4]);
+            stack.push(node.child(i));
         }
         let i = mask.trailing_zeros() as usize;
-        Some(node.children[i / 4][i % 4])
+        Some(node.child(i))
     }
 }

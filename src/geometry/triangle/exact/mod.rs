@@ -33,7 +33,9 @@
 //! is the entry of the triangle's box. [`crate::scene::Geometry`] clamps it into the box.
 
 pub mod expansion;
+mod lanes;
 
+use super::lanes::{LaneHits, TriangleLanes};
 use super::{Triangle, TriangleKernel, in_interval};
 use crate::geometry::Ray;
 use expansion::ExactSum;
@@ -77,6 +79,11 @@ impl TriangleKernel for Exact {
     fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
         let t = intersect_line(tri, ray)?;
         in_interval(t, ray, t_max)
+    }
+
+    #[inline(always)]
+    fn intersect_lanes(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
+        lanes::intersect_lanes(tris, ray)
     }
 }
 
