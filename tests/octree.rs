@@ -30,6 +30,21 @@ fn agrees_with_small_leaves_and_deep_trees() {
     }
 }
 
+/// Issue 17: far from the origin the overlap padding (about 100 units at 1e7) exceeds the cells
+/// of a depth-10 tree; the build used to exceed its node budget. It must stay bounded, and rays
+/// from inside the closed sphere must all hit, with brute force's hits.
+#[test]
+fn builds_bounded_far_from_the_origin_and_rays_from_inside_all_hit() {
+    let scene = common::far::far_icosphere();
+    let rays = common::far::rays_from_inside(2000);
+    for spec in SPECS {
+        common::far::assert_all_hit_from_inside(spec, &rays);
+        common::assert_agrees(spec, &scene, &rays);
+    }
+    let tree = tree_of("octree", &scene);
+    assert!(tree.leaves() < 100_000, "{} leaves", tree.leaves());
+}
+
 /// The tree `spec` builds on `scene` (both traversals build the same tree from the same params).
 fn tree_of(spec: &str, scene: &Scene) -> OctreeTree {
     let spec: IndexSpec = spec.parse().unwrap();

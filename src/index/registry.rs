@@ -53,6 +53,7 @@ const REGISTRY: &[Entry] = &[
     entry::<super::Bvh4>("bvh4", Kind::Ours),
     entry::<super::Bvh8>("bvh8", Kind::Ours),
     entry::<super::Grid>("grid", Kind::Ours),
+    entry::<super::Grid2>("grid2", Kind::Ours),
     entry::<NeighborOctree>("octree", Kind::Ours),
     entry::<TopDownOctree>("octree-topdown", Kind::Ours),
     entry::<KdTree>("kdtree", Kind::Ours),

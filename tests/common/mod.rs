@@ -3,6 +3,9 @@
 //! the whole registry).
 #![allow(dead_code)]
 
+pub mod far;
+pub mod grid_rays;
+
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::{Mismatch, verify_against_brute};
 use accelbench::index::IndexSpec;

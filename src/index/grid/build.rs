@@ -35,7 +35,18 @@ impl Cells {
 /// Fills the cells of `layout` with `geom`'s primitives, or explains why the grid would be too
 /// large (more than [`MAX_REFS`] references).
 pub fn fill_cells<G: Geometry>(geom: &G, layout: &Layout) -> Result<Cells, String> {
-    let n = geom.len() as u32;
+    let all: Vec<u32> = (0..geom.len() as u32).collect();
+    fill_cells_with(geom, layout, &all)
+}
+
+/// Fills the cells of `layout` with the primitives `ids` (ascending), as [`fill_cells`] does
+/// with all of them: a two-level grid fills a cell's inner grid with that cell's primitives.
+pub fn fill_cells_with<G: Geometry>(
+    geom: &G,
+    layout: &Layout,
+    ids: &[u32],
+) -> Result<Cells, String> {
+    let n = ids.len() as u32;
     let total = AtomicUsize::new(0);
     let too_many = || {
         format!(
@@ -48,7 +59,7 @@ pub fn fill_cells<G: Geometry>(geom: &G, layout: &Layout) -> Result<Cells, Strin
         .into_par_iter()
         .map(|chunk| {
             let mut pairs: Vec<(u32, u32)> = Vec::new();
-            for prim in chunk * CHUNK..((chunk + 1) * CHUNK).min(n) {
+            for &prim in &ids[(chunk * CHUNK) as usize..((chunk + 1) * CHUNK).min(n) as usize] {
                 let before = pairs.len();
                 overlapped_cells(geom, layout, prim, |cell| {
                     pairs.push((cell as u32, prim));

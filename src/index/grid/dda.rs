@@ -57,7 +57,18 @@ impl<'a> Dda<'a> {
     #[inline]
     pub fn new(layout: &'a Layout, ray: &Ray) -> Option<Dda<'a>> {
         let (enter, _) = layout.bounds.ray_interval(ray, ray.t_min, ray.t_max)?;
-        let start = ray.at(enter);
+        Some(Dda::starting_at(layout, ray, enter))
+    }
+
+    /// The walk of `ray` from parameter `t` on: it starts in the cell holding `ray.at(t)`
+    /// (clamped into the grid, so a point just outside starts in the nearest boundary cell) and
+    /// ends when it steps out of the grid. A two-level grid walks a cell's own grid this way from
+    /// the parameter at which the top-level walk entered the cell: when the inner grid's outer
+    /// planes are the cell's planes bit for bit, its last exit is the top-level walk's exit from
+    /// the cell (both are the smallest crossing of the same outer planes).
+    #[inline]
+    pub fn starting_at(layout: &'a Layout, ray: &Ray, t: f32) -> Dda<'a> {
+        let start = ray.at(t);
         let origin = ray.origin.to_array();
         let inv_dir = ray.inv_dir.to_array();
         let cell = [0, 1, 2].map(|a| layout.locate(a, start[a]));
@@ -76,7 +87,7 @@ impl<'a> Dda<'a> {
             let plane = layout.planes[a][(cell[a] + u32::from(step[a] > 0)) as usize];
             t_next[a] = (plane - origin[a]) * inv;
         }
-        Some(Dda {
+        Dda {
             layout,
             origin,
             inv_dir,
@@ -86,7 +97,7 @@ impl<'a> Dda<'a> {
             stride,
             t_next,
             done: false,
-        })
+        }
     }
 }
 

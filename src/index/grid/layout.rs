@@ -73,12 +73,38 @@ impl Layout {
             + self.res[0] as usize * (c[1] as usize + self.res[1] as usize * c[2] as usize)
     }
 
+    /// The closed box of cell `c`, from its planes.
+    pub fn cell_box(&self, c: [u32; 3]) -> Aabb {
+        let lo = Vec3A::from_array([0, 1, 2].map(|a| self.planes[a][c[a] as usize]));
+        let hi = Vec3A::from_array([0, 1, 2].map(|a| self.planes[a][c[a] as usize + 1]));
+        Aabb::new(lo, hi)
+    }
+
     /// The box of cell `c` grown by [`Layout::margin`] on every side (what the build tests
     /// primitives against).
     pub fn grown_cell_box(&self, c: [u32; 3]) -> Aabb {
-        let lo = Vec3A::from_array([0, 1, 2].map(|a| self.planes[a][c[a] as usize]));
-        let hi = Vec3A::from_array([0, 1, 2].map(|a| self.planes[a][c[a] as usize + 1]));
-        Aabb::new(lo - self.margin, hi + self.margin)
+        let b = self.cell_box(c);
+        Aabb::new(b.min - self.margin, b.max + self.margin)
+    }
+
+    /// The layout of a grid of `res` cells inside cell `c` (a two-level grid's inner grid): its
+    /// outer planes are `c`'s planes bit for bit, and its margin is this layout's, so a primitive
+    /// in an inner cell's grown box is in `c`'s grown box too (it is among `c`'s primitives).
+    pub fn inner(&self, c: [u32; 3], res: [u32; 3]) -> Layout {
+        Layout {
+            margin: self.margin,
+            ..Layout::new(self.cell_box(c), res)
+        }
+    }
+
+    /// The cell coordinates of linear index `i` (the inverse of [`Layout::linear`]).
+    pub fn coords(&self, i: usize) -> [u32; 3] {
+        let (rx, ry) = (self.res[0] as usize, self.res[1] as usize);
+        [
+            (i % rx) as u32,
+            (i / rx % ry) as u32,
+            (i / (rx * ry)) as u32,
+        ]
     }
 
     /// Cells `first..end` on axis `a` whose grown interval meets `[lo, hi]` (a primitive's

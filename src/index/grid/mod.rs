@@ -14,13 +14,13 @@ pub mod resolution;
 
 pub use dda::Dda;
 pub use layout::Layout;
-pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution};
+pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, check_lambda, heuristic_resolution};
 
 use super::mailbox::with_mailbox;
 use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::scene::Geometry;
-use build::{Cells, fill_cells};
+pub(crate) use build::{Cells, MAX_REFS, fill_cells, fill_cells_with};
 use serde::{Deserialize, Serialize};
 
 /// Grid parameters: either a heuristic density `lambda` or an explicit `res`, not both. With
@@ -77,6 +77,22 @@ impl Grid {
     }
 }
 
+/// The bounds of all of `geom`'s primitives, or an error for index `index` when they are not
+/// finite.
+pub(crate) fn finite_bounds<G: Geometry>(geom: &G, index: &str) -> Result<Aabb, BuildError> {
+    let bounds = (0..geom.len() as u32)
+        .map(|p| geom.bounds(p))
+        .fold(Aabb::EMPTY, Aabb::union);
+    if bounds.min.is_finite() && bounds.max.is_finite() {
+        Ok(bounds)
+    } else {
+        Err(BuildError::Failed {
+            index: index.to_owned(),
+            message: "the scene bounds are not finite (NaN or infinite coordinates)".into(),
+        })
+    }
+}
+
 impl Index for Grid {
     type Params = GridParams;
 
@@ -88,15 +104,7 @@ impl Index for Grid {
             index: "grid".to_owned(),
             message,
         };
-        let bounds = (0..geom.len() as u32)
-            .map(|p| geom.bounds(p))
-            .fold(Aabb::EMPTY, Aabb::union);
-        if !(bounds.min.is_finite() && bounds.max.is_finite()) {
-            return Err(BuildError::Failed {
-                index: "grid".to_owned(),
-                message: "the scene bounds are not finite (NaN or infinite coordinates)".into(),
-            });
-        }
+        let bounds = finite_bounds(geom, "grid")?;
         let res = params.resolution(&bounds, geom.len()).map_err(bad)?;
         let layout = Layout::new(bounds, res);
         let cells = fill_cells(geom, &layout).map_err(|message| BuildError::Failed {

@@ -4,6 +4,7 @@
 
 use super::tree::{INTERNAL, NO_ROPE, Node, OctreeTree, face, octant_bit};
 use crate::geometry::Aabb;
+use crate::geometry::overlap::OVERLAP_PAD;
 use crate::index::BuildError;
 use crate::scene::Geometry;
 use glam::Vec3A;
@@ -16,6 +17,13 @@ pub const MAX_DEPTH_LIMIT: usize = 16;
 /// Node budget: a build that would need more nodes fails with a typed error instead of
 /// exhausting memory (2^24 nodes is about 1 GiB with ropes).
 pub const MAX_NODES: usize = 1 << 24;
+
+/// A cell whose smallest side is under this many overlap paddings (the
+/// [`OVERLAP_PAD`](crate::geometry::overlap::OVERLAP_PAD) of its largest coordinate, added on every
+/// side before the overlap test) stays a leaf: its children's padded boxes would be mostly
+/// padding, so they would hold nearly the same primitives as the cell itself, and far from the
+/// origin (a scene at 1e7 pads cells by 100 units) subdividing further only multiplies nodes.
+pub const MIN_SIDE_IN_PADS: f32 = 4.0;
 
 /// Build parameters shared by `octree` and `octree-topdown` (plain serde fields, so parameter
 /// sweeps can set them by name: `octree:max_prims=4,max_depth=8`).
@@ -120,11 +128,15 @@ impl<G: Geometry> Builder<'_, G> {
         let node = &mut self.tree.nodes[idx as usize];
         node.first = self.tree.prim_ids.len() as u32;
         node.count = prims.len() as u32;
+        node.content = prims
+            .iter()
+            .fold(Aabb::EMPTY, |b, &p| b.union(self.geom.bounds(p)));
         self.tree.prim_ids.extend_from_slice(prims);
     }
 
     /// The children's primitive lists, or `None` when the node stays a leaf: few enough
-    /// primitives, the depth limit, a cell too small to split in `f32`, or a split that separates
+    /// primitives, the depth limit, a cell too small to split in `f32` or too small against the
+    /// overlap padding ([`MIN_SIDE_IN_PADS`]), or a split that separates
     /// nothing (two or more children non-empty and each holding every primitive: coincident or
     /// duplicate primitives, or a fan around a shared vertex). A split that moves all primitives
     /// into a single child is kept: it zooms in on a small cluster, bounded by `max_depth`.
@@ -133,6 +145,10 @@ impl<G: Geometry> Builder<'_, G> {
             return None;
         }
         if !(cell.min.cmplt(mid).all() && mid.cmplt(cell.max).all()) {
+            return None;
+        }
+        let pad = cell.min.abs().max(cell.max.abs()).max_element() * OVERLAP_PAD;
+        if cell.extent().min_element() < MIN_SIDE_IN_PADS * pad {
             return None;
         }
         let children: [Vec<u32>; 8] = std::array::from_fn(|c| {
@@ -178,6 +194,7 @@ impl<G: Geometry> Builder<'_, G> {
                 cell: octant_cell(&cell, mid, c),
                 first: 0,
                 count: 0,
+                content: Aabb::EMPTY,
             });
             self.tree.ropes.push([NO_ROPE; 6]);
         }
@@ -213,6 +230,7 @@ impl OctreeTree {
                     cell: root,
                     first: 0,
                     count: 0,
+                    content: Aabb::EMPTY,
                 }],
                 ropes: vec![[NO_ROPE; 6]],
                 prim_ids: Vec::new(),

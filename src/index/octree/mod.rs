@@ -53,8 +53,10 @@ use std::marker::PhantomData;
 ///
 /// Contract: leaves come in increasing order of their `t` interval along the ray, starting with
 /// the leaf that holds the ray at its entry into the root (clipped to `ray.t_min`). `visit`
-/// returns the current cutoff (the best `t`, or `-inf` to stop at once); the walk stops after a
-/// leaf whose exit parameter is `>=` the cutoff, or when the ray leaves the octree.
+/// returns the current cutoff (the best `t`, or `-inf` to stop at once; `ray.t_max` before the
+/// first call); the walk stops after a leaf whose exit parameter is `>=` the cutoff, or when the
+/// ray leaves the octree. A leaf whose content box the ray misses within `[t_min, cutoff]` is
+/// not handed to `visit` (exact: see `OctreeTree::leaf_prims_within`).
 pub trait LeafOrder: Send + Sync + 'static {
     fn for_each_leaf<S: Stats>(
         tree: &OctreeTree,

@@ -48,9 +48,13 @@ impl LeafOrder for Neighbor {
         let r = AxisRay::new(ray);
         let mut t = enter;
         let mut leaf = locate(tree, &r, 0, t, stats);
+        let mut cutoff = ray.t_max;
         loop {
             let node = &tree.nodes[leaf as usize];
-            let cutoff = visit(tree.leaf_prims(node), stats);
+            let prims = tree.leaf_prims_within(node, ray, cutoff, stats);
+            if !prims.is_empty() {
+                cutoff = visit(prims, stats);
+            }
             let (exit, axis, upper) = r.exit(&node.cell);
             if cutoff <= exit {
                 return;

@@ -29,10 +29,18 @@ pub(super) fn next_child(c: usize, axis: usize) -> Option<usize> {
     (c & bit == 0).then_some(c | bit)
 }
 
+/// The ray as given, its axis form, and the cutoff so far (the last value `visit` returned,
+/// initially `t_max`).
+struct Walk<'a> {
+    ray: &'a Ray,
+    r: AxisRay,
+    cutoff: f32,
+}
+
 /// Walks the subtree `node` whose slab parameters are `t0`, `t1`; returns `true` to stop.
 fn descend<S: Stats>(
     tree: &OctreeTree,
-    r: &AxisRay,
+    w: &mut Walk<'_>,
     node: u32,
     (t0, t1): (Vec3A, Vec3A),
     t_start: f32,
@@ -46,16 +54,20 @@ fn descend<S: Stats>(
     stats.node_visit();
     let n = &tree.nodes[node as usize];
     if n.is_leaf() {
-        return visit(tree.leaf_prims(n), stats) <= exit;
+        let prims = tree.leaf_prims_within(n, w.ray, w.cutoff, stats);
+        if !prims.is_empty() {
+            w.cutoff = visit(prims, stats);
+        }
+        return w.cutoff <= exit;
     }
-    let tm = r.mid_crossings(tree.nodes[n.first as usize].cell.max);
+    let tm = w.r.mid_crossings(tree.nodes[n.first as usize].cell.max);
     let mut c = AxisRay::octant_at(tm, t0.max_element().max(t_start));
     loop {
         let upper = mask_of(c);
         let ct0 = Vec3A::select(upper, tm, t0);
         let ct1 = Vec3A::select(upper, t1, tm);
-        let child = n.first + (c ^ r.mask) as u32;
-        if descend(tree, r, child, (ct0, ct1), t_start, stats, visit) {
+        let child = n.first + (c ^ w.r.mask) as u32;
+        if descend(tree, w, child, (ct0, ct1), t_start, stats, visit) {
             return true;
         }
         // Leave through the lowest tied axis that stays inside this node (visiting cells of
@@ -85,6 +97,11 @@ impl LeafOrder for TopDown {
             return;
         };
         let r = AxisRay::new(ray);
-        descend(tree, &r, 0, r.slabs(&root), enter, stats, &mut visit);
+        let mut w = Walk {
+            ray,
+            r,
+            cutoff: ray.t_max,
+        };
+        descend(tree, &mut w, 0, r.slabs(&root), enter, stats, &mut visit);
     }
 }

@@ -1,7 +1,8 @@
 //! The octree's flat node layout, shared by both traversals: nodes with their cells, the eight
 //! children of a node stored contiguously, leaf primitive ids in one array, and face ropes.
 
-use crate::geometry::Aabb;
+use crate::geometry::{Aabb, Ray};
+use crate::index::Stats;
 
 /// `count` of an internal node.
 pub(super) const INTERNAL: u32 = u32::MAX;
@@ -19,6 +20,9 @@ pub(super) struct Node {
     pub first: u32,
     /// Leaf: number of primitive ids. Internal: [`INTERNAL`].
     pub count: u32,
+    /// Leaf: the union of its primitives' bounds ([`crate::scene::Geometry::bounds`]; empty for
+    /// an empty leaf and for internal nodes). It may reach beyond the cell.
+    pub content: Aabb,
 }
 
 impl Node {
@@ -73,6 +77,34 @@ impl OctreeTree {
     #[inline(always)]
     pub(super) fn leaf_prims(&self, node: &Node) -> &[u32] {
         &self.prim_ids[node.first as usize..(node.first + node.count) as usize]
+    }
+
+    /// The primitives of a leaf that can still beat `cutoff` (the best `t` so far, or
+    /// `ray.t_max`): all of them when the ray meets the leaf's content box within
+    /// `[ray.t_min, cutoff]`, none otherwise (one box test, counted).
+    ///
+    /// Exact: [`crate::scene::Geometry::intersect`] clamps a primitive's `t` into the slab
+    /// interval of its own bounds, and the slab test is monotone, so a primitive's `t` lies in
+    /// the interval of any box holding its bounds. When the ray misses the content box within
+    /// `[t_min, cutoff]` (closed, so a tie at `cutoff` is kept), no primitive of the leaf can hit
+    /// at or before `cutoff`. On a flat or boxy scene most leaves a ray crosses touch a wall only
+    /// at one face, and this skips them.
+    #[inline(always)]
+    pub(super) fn leaf_prims_within<S: Stats>(
+        &self,
+        node: &Node,
+        ray: &Ray,
+        cutoff: f32,
+        stats: &mut S,
+    ) -> &[u32] {
+        if node.count == 0 {
+            return &[];
+        }
+        stats.box_tests(1);
+        match node.content.ray_interval(ray, ray.t_min, cutoff) {
+            Some(_) => self.leaf_prims(node),
+            None => &[],
+        }
     }
 
     /// Number of leaves.
