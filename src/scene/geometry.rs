@@ -62,6 +62,11 @@ pub trait Geometry: Clone + Send + Sync + 'static {
     fn own_plane(&self, _prim: u32) -> Option<(Vec3A, f32)> {
         None
     }
+    /// All primitives as triangles (ids = positions), when the scene has nothing else: for
+    /// outside peers that build their own triangle structures. `None` by default.
+    fn triangles_only(&self) -> Option<&[Triangle]> {
+        None
+    }
 }
 
 /// Extent of a triangle along `dir` (see [`Geometry::extent_along`]).
@@ -176,6 +181,9 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     }
     fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
         self.tris[prim as usize].normal()
+    }
+    fn triangles_only(&self) -> Option<&[Triangle]> {
+        Some(&self.tris)
     }
 }
 

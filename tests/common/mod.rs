@@ -3,6 +3,8 @@
 //! the whole registry).
 #![allow(dead_code)]
 
+pub mod drop_one;
+
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::{Mismatch, verify_against_brute};
 use accelbench::index::IndexSpec;
