@@ -145,6 +145,15 @@ fn run_scene(
         progress.set_message(format!("{}: building {spec}", scene.name));
         match build(spec, &geom) {
             Ok(i) => built.push(i),
+            Err(BuildError::Unsupported { reason, .. }) => {
+                note(
+                    res,
+                    scene,
+                    format!("index {spec}"),
+                    format!("skipped: {reason}"),
+                );
+                progress.inc(cfg.sets.len() as u64);
+            }
             Err(e) => {
                 note(
                     res,

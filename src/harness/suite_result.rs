@@ -37,6 +37,14 @@ pub struct ResultRow {
     /// the fast filter could not certify, so the exact fallback decided it. NaN for other
     /// kernels and for peers (their own triangle tests).
     pub exact_fallback_rate: f64,
+    /// Peers only (empty for ours): brute-force-verified rays where the peer differs from brute
+    /// force by a tie (both hit, `t` within `1e-6 t`; `harness::peer_check`).
+    pub peer_ties: Option<usize>,
+    /// Peers only: verified rays where the peer hits brute force's primitive with a `t` more
+    /// than `1e-6 t` away.
+    pub peer_t_off: Option<usize>,
+    /// Peers only: verified rays where the exact reference contradicts the peer.
+    pub peer_wrong: Option<usize>,
 }
 
 /// A mismatch with where it happened.

@@ -1,6 +1,7 @@
 //! One ray set of one scene through every built index: brute force's reference, then per index
 //! a counting pass, the verification of its hits, the timed passes and the result rows.
 
+use super::peer_check::{PeerCounts, classify};
 use super::suite::{Pools, SuiteConfig, note};
 use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
 use super::timing::{BatchHits, Query, Timing, counting_pass, timed_pass};
@@ -36,6 +37,8 @@ struct Tally<'a> {
     set: RaySet,
     query: Query,
     count: usize,
+    /// Peers only: their disagreements with brute force, classified.
+    peer: Option<PeerCounts>,
 }
 
 impl Tally<'_> {
@@ -120,6 +123,12 @@ impl<'a> SetRun<'a> {
         let mut vs_brute = compare_closest(&self.ref_rays, &self.ref_hits, &sampled);
         for m in &mut vs_brute {
             m.ray_index = self.ref_ids[m.ray_index];
+        }
+        if let Some(counts) = &mut t.peer {
+            for m in &vs_brute {
+                let ray = &self.rays[m.ray_index];
+                counts.add(classify(self.scene, ray, t.query, m.expected, m.got));
+            }
         }
         t.record("brute", vs_brute, res);
         match &self.first {
@@ -220,6 +229,7 @@ pub(super) fn run_set(
             set: run.set,
             query,
             count: 0,
+            peer: is_peer(index.name()).then(PeerCounts::default),
         };
         run.verify(index, &hits, &mut tally, res);
         let timings = timed_passes(&run, index, &hits, cfg, pools, &mut tally, res);
@@ -228,6 +238,7 @@ pub(super) fn run_set(
             hits: hits.iter().flatten().count(),
             mismatches: tally.count,
             exact_fallbacks,
+            peer: tally.peer,
         };
         for (threads, timing) in timings {
             res.rows
@@ -244,6 +255,7 @@ struct SetCounts {
     mismatches: usize,
     /// Edge functions the exact kernel's fallback decided during the counting pass.
     exact_fallbacks: u64,
+    peer: Option<PeerCounts>,
 }
 
 fn result_row(
@@ -256,6 +268,8 @@ fn result_row(
 ) -> ResultRow {
     let n = run.rays.len() as f64;
     let info = index.info();
+    // Indices that count nothing (Embree, tinybvh) get NaN ("–" in the summary), not 0.
+    let counted = |v: f64| if info.uncounted { f64::NAN } else { v };
     let (median, spread) = timing.map_or((f64::NAN, f64::NAN), |t| {
         (t.median.as_secs_f64(), t.spread.as_secs_f64())
     });
@@ -272,10 +286,10 @@ fn result_row(
         trace_ms_median: median * 1e3,
         trace_ms_spread: spread * 1e3,
         mrays_per_s: n / median / 1e6,
-        mtests_per_s: c.total.prim_tests as f64 / median / 1e6,
-        prim_tests_per_ray: c.total.prim_tests as f64 / n,
-        node_visits_per_ray: c.total.node_visits as f64 / n,
-        box_tests_per_ray: c.total.box_tests as f64 / n,
+        mtests_per_s: counted(c.total.prim_tests as f64 / median / 1e6),
+        prim_tests_per_ray: counted(c.total.prim_tests as f64 / n),
+        node_visits_per_ray: counted(c.total.node_visits as f64 / n),
+        box_tests_per_ray: counted(c.total.box_tests as f64 / n),
         hits: c.hits,
         mismatches: c.mismatches,
         brute_verified_rays: run.ref_ids.len(),
@@ -291,5 +305,8 @@ fn result_row(
         } else {
             f64::NAN
         },
+        peer_ties: c.peer.map(|p| p.ties),
+        peer_t_off: c.peer.map(|p| p.t_off),
+        peer_wrong: c.peer.map(|p| p.wrong),
     }
 }

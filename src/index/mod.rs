@@ -7,6 +7,8 @@
 mod brute;
 pub mod bsp;
 pub mod bvh;
+#[cfg(feature = "embree")]
+pub mod embree_peer;
 pub mod grid;
 pub mod grid2;
 pub mod kdtree;
@@ -17,6 +19,10 @@ pub mod octree;
 mod registry;
 pub(crate) mod stack;
 mod stats;
+#[cfg(feature = "tinybvh")]
+pub mod tinybvh_peer;
+#[cfg(any(feature = "embree", feature = "tinybvh"))]
+mod triangle_peer;
 pub mod wbvh;
 
 pub use brute::BruteForce;
@@ -53,6 +59,10 @@ pub enum BuildError {
     EmptyScene,
     #[error("index '{index}' cannot be built: {message}")]
     Failed { index: String, message: String },
+    /// The index does not handle this scene (a triangle-only peer on a scene with spheres):
+    /// the suite skips it with this reason instead of failing.
+    #[error("{index} skipped: {reason}")]
+    Unsupported { index: String, reason: String },
 }
 
 /// Size and shape of a built index, for reports.
@@ -72,6 +82,9 @@ pub struct IndexInfo {
     pub build_time: Duration,
     /// Structure-specific figures (name, value), e.g. `("empty_cells", 0.4)`.
     pub extra: Vec<(String, f64)>,
+    /// `true` for peers whose traversal reports nothing to [`Stats`] (Embree, tinybvh): reports
+    /// show their tests and steps per ray as missing, not 0.
+    pub uncounted: bool,
 }
 
 /// An acceleration structure.

@@ -60,6 +60,12 @@ const REGISTRY: &[Entry] = &[
     entry::<Bsp>("bsp", Kind::Ours),
     entry::<ObvhsBvh2>("obvhs-bvh2", Kind::Peer),
     entry::<ObvhsCwBvh>("obvhs-cwbvh", Kind::Peer),
+    #[cfg(feature = "embree")]
+    entry::<super::embree_peer::Embree>("embree", Kind::Peer),
+    #[cfg(feature = "embree")]
+    entry::<super::embree_peer::EmbreeFast>("embree-fast", Kind::Peer),
+    #[cfg(feature = "tinybvh")]
+    entry::<super::tinybvh_peer::TinyBvh8>("tinybvh-bvh8", Kind::Peer),
 ];
 
 /// Names of all registered indices, in report order.

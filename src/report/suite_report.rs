@@ -207,6 +207,28 @@ fn cost_table(fits: &[CostFit]) -> String {
     s
 }
 
+/// Per peer, its disagreements with brute force on the verified rays of one set: ties, hits
+/// with an imprecise `t` and wrong results (`harness::peer_check`); empty when no peer ran.
+fn peer_line(rows: &[&ResultRow]) -> String {
+    let parts: Vec<String> = by_index(rows)
+        .into_iter()
+        .filter_map(|(name, rs)| {
+            let r = rs[0];
+            let (ties, t_off, wrong) = (r.peer_ties?, r.peer_t_off?, r.peer_wrong?);
+            Some(format!(
+                "{name} {ties} ties, {t_off} with t off by more than 1e-6 t, {wrong} wrong"
+            ))
+        })
+        .collect();
+    if parts.is_empty() {
+        return String::new();
+    }
+    format!(
+        "Peers against brute force (verified rays): {}.\n\n",
+        parts.join("; ")
+    )
+}
+
 /// The human-readable summary.
 pub fn summary_markdown(
     meta: &RunMeta,
@@ -228,8 +250,9 @@ pub fn summary_markdown(
             s,
             "**Peers** ({}) returned {} results that differ from brute force: obvhs traverses \
              with its own box tests, which lose ties at shared edges and some grazing or \
-             very-near hits. Reported in the `mismatches` column and `mismatches.txt`, not a \
-             failure of the run.\n",
+             very-near hits; Embree and tinybvh also test triangles themselves. Reported in the \
+             `mismatches` column and `mismatches.txt` (ties and wrong results per set below), \
+             not a failure of the run.\n",
             crate::index::peer_names().join(", "),
             notes.peer_mismatch_total
         );
@@ -262,6 +285,7 @@ pub fn summary_markdown(
                 set_table(&in_set, &threads)
             );
             s.push_str(&fallback_line(&in_set));
+            s.push_str(&peer_line(&in_set));
         }
         for v in notes.verification.iter().filter(|v| v.scene == scene) {
             let _ = writeln!(s, "- verification, {}: {}", v.what, v.reason);

@@ -83,6 +83,11 @@ pub trait Geometry: Clone + Send + Sync + 'static {
         }
         out
     }
+    /// All primitives as triangles (ids = positions), when the scene has nothing else: for
+    /// outside peers that build their own triangle structures. `None` by default.
+    fn triangles_only(&self) -> Option<&[Triangle]> {
+        None
+    }
 }
 
 /// Extent of a triangle along `dir` (see [`Geometry::extent_along`]).
@@ -223,6 +228,9 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
             }
         }
         out
+    }
+    fn triangles_only(&self) -> Option<&[Triangle]> {
+        Some(&self.tris)
     }
 }
 

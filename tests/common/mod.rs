@@ -5,6 +5,7 @@
 
 pub mod far;
 pub mod grid_rays;
+pub mod drop_one;
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::{Mismatch, verify_against_brute};

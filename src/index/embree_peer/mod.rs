@@ -1,0 +1,171 @@
+//! Intel Embree 3 (the system library, through the `embree3` crate; feature `embree`) as a peer
+//! behind our [`Index`] trait: `embree` (build quality medium, `RTC_SCENE_FLAG_ROBUST`, i.e.
+//! watertight traversal, the fair match for our default exact kernel) and `embree-fast` (the
+//! same without the robust flag: Embree's default). One `rtcIntersect1` per closest-hit query,
+//! one `rtcOccluded1` per any-hit query.
+//!
+//! Embree tests the triangles itself, so its hits are not bit for bit ours: the suite classifies
+//! each disagreement with brute force as a tie or wrong (`harness::peer_check`). Embree counts
+//! nothing, so the index is [`IndexInfo::uncounted`]. Triangle scenes only
+//! ([`BuildError::Unsupported`] otherwise).
+
+mod device;
+
+use super::triangle_peer::peer_triangles;
+use crate::geometry::{Hit, Ray};
+use crate::index::{BuildError, Index, IndexInfo, Stats};
+use crate::scene::Geometry;
+use device::MonitoredDevice;
+use embree3::{
+    BufferUsage, BuildQuality, Format, GeometryKind, INVALID_ID, IntersectContext, RayHit, Scene,
+    SceneFlags,
+};
+use serde::{Deserialize, Serialize};
+
+/// Embree's BVH build quality (`RTC_BUILD_QUALITY_*`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EmbreeQuality {
+    Low,
+    #[default]
+    Medium,
+    High,
+}
+
+impl EmbreeQuality {
+    fn rtc(self) -> BuildQuality {
+        match self {
+            EmbreeQuality::Low => BuildQuality::LOW,
+            EmbreeQuality::Medium => BuildQuality::MEDIUM,
+            EmbreeQuality::High => BuildQuality::HIGH,
+        }
+    }
+}
+
+/// Parameters of `embree` and `embree-fast`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EmbreeParams {
+    /// Build quality (default `medium`).
+    pub quality: EmbreeQuality,
+}
+
+/// An Embree scene of one triangle mesh whose primitive ids are our scene ids. `ROBUST` sets
+/// `RTC_SCENE_FLAG_ROBUST`.
+pub struct EmbreePeer<const ROBUST: bool> {
+    scene: Scene<'static>,
+    /// Bytes Embree held after the commit (its memory-monitor callback: allocations minus
+    /// frees, vertex and index buffers included).
+    memory_bytes: usize,
+    triangles: usize,
+    /// Embree's build threads (`threads=N` of the device: the calling rayon pool's size).
+    build_threads: usize,
+}
+
+/// `embree`: robust (watertight) traversal.
+pub type Embree = EmbreePeer<true>;
+/// `embree-fast`: Embree's default (non-robust) traversal.
+pub type EmbreeFast = EmbreePeer<false>;
+
+impl<const ROBUST: bool> EmbreePeer<ROBUST> {
+    const NAME: &'static str = if ROBUST { "embree" } else { "embree-fast" };
+}
+
+/// Our ray as Embree's (`[tnear, tfar]` = `[t_min, t_max]`, every mask bit set).
+#[inline(always)]
+fn rtc_ray(ray: &Ray) -> embree3::Ray {
+    embree3::Ray::new(
+        ray.origin.to_array(),
+        ray.dir.to_array(),
+        ray.t_min,
+        ray.t_max,
+        0.0,
+        u32::MAX,
+        0,
+    )
+}
+
+impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
+    type Params = EmbreeParams;
+
+    fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
+        let name = Self::NAME;
+        let tris = peer_triangles(geom, name)?;
+        let failed = |what: &str, e: embree3::Error| BuildError::Failed {
+            index: name.to_owned(),
+            message: format!("Embree {what} failed ({e:?})"),
+        };
+        let build_threads = rayon::current_num_threads();
+        let device = MonitoredDevice::new(build_threads).map_err(|e| failed("device", e))?;
+        let mut mesh = device
+            .device
+            .create_geometry(GeometryKind::TRIANGLE)
+            .map_err(|e| failed("triangle geometry", e))?;
+        let n = tris.len();
+        mesh.set_new_buffer::<[f32; 3]>(BufferUsage::VERTEX, 0, Format::FLOAT3, 12, 3 * n)
+            .map_err(|e| failed("vertex buffer", e))?
+            .iter_mut()
+            .zip(tris.iter().flat_map(|t| t.v))
+            .for_each(|(dst, v)| *dst = v.to_array());
+        mesh.set_new_buffer::<[u32; 3]>(BufferUsage::INDEX, 0, Format::UINT3, 12, n)
+            .map_err(|e| failed("index buffer", e))?
+            .iter_mut()
+            .enumerate()
+            // `peer_triangles` guarantees 3 * n < u32::MAX.
+            .for_each(|(i, dst)| *dst = [0, 1, 2].map(|k| (3 * i + k) as u32));
+        mesh.set_build_quality(params.quality.rtc());
+        let mesh = mesh.commit();
+        let flags = if ROBUST {
+            SceneFlags::ROBUST
+        } else {
+            SceneFlags::NONE
+        };
+        let mut scene = device
+            .device
+            .create_scene()
+            .map_err(|e| failed("scene", e))?;
+        scene.set_flags(flags);
+        scene.set_build_quality(params.quality.rtc());
+        scene.attach_geometry(&mesh);
+        drop(mesh);
+        scene.commit();
+        let error = device.device.get_error();
+        if error != embree3::Error::NONE {
+            return Err(failed("scene commit", error));
+        }
+        Ok(EmbreePeer {
+            memory_bytes: device.held_bytes(),
+            scene,
+            triangles: n,
+            build_threads,
+        })
+    }
+
+    #[inline]
+    fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> Option<Hit> {
+        let mut rh = RayHit::from(rtc_ray(ray));
+        self.scene
+            .intersect(&mut IntersectContext::incoherent(), &mut rh);
+        (rh.hit.geomID != INVALID_ID).then_some(Hit {
+            t: rh.ray.tfar,
+            prim: rh.hit.primID,
+        })
+    }
+
+    #[inline]
+    fn any_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> bool {
+        let mut r = rtc_ray(ray);
+        self.scene
+            .occluded(&mut IntersectContext::incoherent(), &mut r)
+    }
+
+    fn info(&self) -> IndexInfo {
+        IndexInfo {
+            memory_bytes: self.memory_bytes,
+            prim_refs: self.triangles,
+            uncounted: true,
+            extra: vec![("build_threads".into(), self.build_threads as f64)],
+            ..IndexInfo::default()
+        }
+    }
+}

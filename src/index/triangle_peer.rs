@@ -1,0 +1,37 @@
+//! What the triangle-only outside peers (Embree, tinybvh) share: their input, the scene's
+//! triangles in id order, or the reason they skip a scene.
+
+use crate::geometry::Triangle;
+use crate::index::BuildError;
+use crate::scene::Geometry;
+
+/// The scene's triangles (primitive id = position), or [`BuildError::Unsupported`] when the
+/// scene has other primitives (the peers test triangles only) and [`BuildError::Failed`] when
+/// ids do not fit the peers' 32-bit primitive ids.
+pub(crate) fn peer_triangles<'g, G: Geometry>(
+    geom: &'g G,
+    index: &str,
+) -> Result<&'g [Triangle], BuildError> {
+    let tris = geom
+        .triangles_only()
+        .ok_or_else(|| BuildError::Unsupported {
+            index: index.to_owned(),
+            reason: "the peer tests triangles only, and this scene has spheres or other shapes"
+                .to_owned(),
+        })?;
+    if tris.is_empty() {
+        return Err(BuildError::EmptyScene);
+    }
+    // Both peers take `u32` primitive ids and reserve `u32::MAX` (Embree: RTC_INVALID_GEOMETRY_ID).
+    if tris.len() >= u32::MAX as usize / 3 {
+        return Err(BuildError::Failed {
+            index: index.to_owned(),
+            message: format!(
+                "{} triangles: the peer's 32-bit vertex indices hold at most {}",
+                tris.len(),
+                u32::MAX / 3 - 1
+            ),
+        });
+    }
+    Ok(tris)
+}

@@ -1,0 +1,247 @@
+//! The outside peers Embree and tinybvh (features `embree`, `tinybvh`; `peers` = both): they
+//! build and trace the bunny and the generated triangle scenes, their disagreements with brute
+//! force are classified as ties or wrong (none wrong for `embree` on the bunny's protocol
+//! sets), and a scene with spheres skips them with the reason.
+#![cfg(any(feature = "embree", feature = "tinybvh"))]
+
+mod common;
+
+use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
+use accelbench::harness::peer_check::{PeerCounts, Verdict, classify};
+use accelbench::harness::suite::{SuiteConfig, run_suite, run_suite_with};
+use accelbench::harness::timing::Query;
+use accelbench::harness::verify::compare_closest;
+use accelbench::harness::workload::{self, RaySet, SetSizes};
+use accelbench::index::{
+    BuildError, IndexSpec, TraceIndex, build_index, build_index_on, is_peer, peer_names,
+};
+use accelbench::scene::{Scene, SceneGeometry, Triangles, generators};
+use indicatif::ProgressBar;
+
+/// The peers of this build (obvhs excluded: `tests/obvhs_peer.rs`).
+fn peers() -> Vec<&'static str> {
+    peer_names()
+        .into_iter()
+        .filter(|n| !n.starts_with("obvhs"))
+        .collect()
+}
+
+fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
+    let spec: IndexSpec = spec.parse().unwrap();
+    build_index(&spec, &scene.geometry(), TriangleKernelKind::Exact).unwrap()
+}
+
+fn closest(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<Option<Hit>> {
+    let mut out = vec![None; rays.len()];
+    index.closest_hits(rays, &mut out);
+    out
+}
+
+/// Classifies every ray where `got` differs from `expected`, printing the wrong ones.
+fn judge(
+    what: &str,
+    scene: &Scene,
+    rays: &[Ray],
+    expected: &[Option<Hit>],
+    got: &[Option<Hit>],
+) -> PeerCounts {
+    let mut counts = PeerCounts::default();
+    for m in compare_closest(rays, expected, got) {
+        let v = classify(scene, &rays[m.ray_index], Query::Closest, m.expected, m.got);
+        if v == Verdict::Wrong {
+            eprintln!("{what}: wrong: {m}");
+        }
+        counts.add(v);
+    }
+    counts
+}
+
+/// The generated triangle scenes: every peer builds and traces them (any-hit consistent with its
+/// closest hit); on protocol-like rays (48 x 48 primary, 2000 incoherent) the robust `embree` is
+/// wrong on at most 1% of the hits. The others' counts are printed: `embree-fast` misses most
+/// of the zero-thickness `flat` scene, and on rays aimed exactly at vertices and edges
+/// (`common::agreement_rays`) non-watertight peers lose hits through the cracks.
+#[test]
+fn peers_trace_generated_triangle_scenes_close_to_brute_force() {
+    let scenes = common::agreement_scenes()
+        .into_iter()
+        .filter(|s| s.spheres.is_empty() && s.shapes.is_empty());
+    for scene in scenes {
+        let brute = build("brute", &scene);
+        let rays = common::bunny_protocol_sample(&scene);
+        let aimed = common::agreement_rays(&scene, 500);
+        let expected = closest(brute.as_ref(), &rays);
+        let expected_aimed = closest(brute.as_ref(), &aimed);
+        let hits = expected.iter().flatten().count();
+        for name in peers() {
+            let index = build(name, &scene);
+            assert!(index.info().memory_bytes > 0, "{name}: no memory reported");
+            let got = closest(index.as_ref(), &rays);
+            let what = format!("{name} on {}", scene.name);
+            let c = judge(&what, &scene, &rays, &expected, &got);
+            let got_aimed = closest(index.as_ref(), &aimed);
+            let c_aimed = judge(&what, &scene, &aimed, &expected_aimed, &got_aimed);
+            eprintln!("{what}: {c:?} of {hits} hits; aimed at vertices and edges: {c_aimed:?}");
+            if name == "embree" {
+                assert!(c.wrong * 100 <= hits, "{what}: {c:?} of {hits} hits");
+            }
+            let mut any = vec![false; rays.len()];
+            index.any_hits(&rays, &mut any);
+            let differ = any
+                .iter()
+                .zip(&got)
+                .filter(|(a, g)| **a != g.is_some())
+                .count();
+            assert_eq!(differ, 0, "{what}: any-hit disagrees with its closest hit");
+        }
+    }
+}
+
+/// The bunny's full protocol sets (1024 x 1024 primary, 1,048,576 incoherent rays). The
+/// reference is `bvh`, which returns brute force's hits bit for bit (`tests/agreement.rs`), so
+/// every ray can be checked.
+#[test]
+fn embree_is_never_wrong_on_the_bunny_protocol_sets() {
+    let Some(bunny) = common::bunny() else {
+        eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
+        return;
+    };
+    let sizes = SetSizes {
+        primary_side: 1024,
+        incoherent: 1 << 20,
+        ao_fraction: 0.05,
+    };
+    let reference = build("bvh", &bunny);
+    let sets = [
+        ("primary", workload::primary(&bunny, &sizes).unwrap()),
+        ("incoherent", workload::incoherent(&bunny, &sizes)),
+    ];
+    for (set, rays) in &sets {
+        let expected = closest(reference.as_ref(), rays);
+        for name in peers() {
+            let got = closest(build(name, &bunny).as_ref(), rays);
+            let c = judge(&format!("{name} {set}"), &bunny, rays, &expected, &got);
+            eprintln!("{name} on the bunny, {set}: {} rays, {c:?}", rays.len());
+            if name == "embree" {
+                assert_eq!(c.wrong, 0, "embree {set}: {c:?}");
+            }
+        }
+    }
+}
+
+fn config(indices: &[&str], sets: Vec<RaySet>) -> SuiteConfig {
+    SuiteConfig {
+        indices: indices.iter().map(|n| IndexSpec::named(n)).collect(),
+        sets,
+        threads: vec![1],
+        sizes: SetSizes {
+            primary_side: 32,
+            incoherent: 1000,
+            ao_fraction: 0.05,
+        },
+        repeats: 1,
+        kernel: TriangleKernelKind::Exact,
+        verify_budget: u64::MAX,
+        brute_timing_budget: 0,
+        timed: true,
+    }
+}
+
+#[test]
+fn suite_rows_of_peers_have_ties_and_wrong_and_no_counters() {
+    let scene = generators::generate("icosphere", 2000, 3).unwrap();
+    let mut names = vec!["bvh"];
+    names.extend(peers());
+    let cfg = config(&names, RaySet::ALL.to_vec());
+    let res = run_suite(&[scene], &cfg, &ProgressBar::hidden()).unwrap();
+    assert_eq!(res.mismatch_total, 0, "{:?}", res.mismatches.first());
+    assert!(res.notes.is_empty(), "{:?}", res.notes);
+    assert_eq!(res.rows.len(), names.len() * RaySet::ALL.len());
+    for r in &res.rows {
+        if is_peer(&r.index) {
+            let (ties, t_off) = (r.peer_ties.unwrap(), r.peer_t_off.unwrap());
+            assert!(
+                ties + t_off + r.peer_wrong.unwrap() <= r.mismatches,
+                "{r:?}"
+            );
+            assert!(
+                r.prim_tests_per_ray.is_nan() && r.node_visits_per_ray.is_nan(),
+                "{r:?}"
+            );
+            assert!(r.mrays_per_s > 0.0 && r.memory_bytes > 0, "{r:?}");
+        } else {
+            assert_eq!(
+                (r.peer_ties, r.peer_t_off, r.peer_wrong),
+                (None, None, None),
+                "{r:?}"
+            );
+            assert!(r.prim_tests_per_ray > 0.0, "{r:?}");
+        }
+    }
+}
+
+/// A faulty "peer" (brute force that never reports one primitive, registered under a peer's
+/// name) is caught: the rays through that primitive are counted wrong, not as ties.
+#[test]
+fn a_peer_that_drops_a_primitive_is_counted_wrong() {
+    let scene = generators::generate("icosphere", 500, 1).unwrap();
+    let name = peers()[0];
+    let cfg = config(&[name], vec![RaySet::Primary]);
+    let res = run_suite_with(
+        &[scene],
+        &cfg,
+        &ProgressBar::hidden(),
+        &|_: &IndexSpec, g: &SceneGeometry| {
+            let geom = Triangles::<accelbench::geometry::triangle::Exact>::new(g.triangles.clone());
+            Ok(Box::new(build_index_on::<common::drop_one::DropOne, _>(
+                name,
+                geom,
+                Default::default(),
+            )?) as Box<dyn TraceIndex>)
+        },
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let row = &res.rows[0];
+    assert!(
+        row.mismatches > 0,
+        "the dropped primitive is never hit: {row:?}"
+    );
+    assert_eq!(row.peer_wrong, Some(row.mismatches), "{row:?}");
+    assert_eq!(
+        res.mismatch_total, 0,
+        "a peer's mismatches do not fail the run"
+    );
+}
+
+#[test]
+fn a_scene_with_spheres_skips_the_peers_with_the_reason() {
+    let scene = generators::generate("mixed", 600, 2).unwrap();
+    let mut names = vec!["bvh"];
+    names.extend(peers());
+    let res = run_suite(
+        std::slice::from_ref(&scene),
+        &config(&names, vec![RaySet::Primary]),
+        &ProgressBar::hidden(),
+    )
+    .unwrap();
+    assert_eq!(res.rows.len(), 1, "only bvh runs: {:?}", res.rows);
+    assert_eq!(res.notes.len(), peers().len(), "{:?}", res.notes);
+    for n in &res.notes {
+        assert!(
+            n.reason
+                .starts_with("skipped: the peer tests triangles only, and this scene has spheres"),
+            "{n:?}"
+        );
+    }
+    for name in peers() {
+        let err = build_index(
+            &IndexSpec::named(name),
+            &scene.geometry(),
+            TriangleKernelKind::Exact,
+        )
+        .err()
+        .unwrap();
+        assert!(matches!(err, BuildError::Unsupported { .. }), "{err}");
+    }
+}

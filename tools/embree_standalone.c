@@ -1,0 +1,152 @@
+/*
+ * Embree 3 outside the suite, on the same rays: the check that the suite's `embree` and
+ * `embree-fast` peers cost what Embree costs when called from C (README, "Peers").
+ *
+ * Build (Debian: apt-get install libembree-dev):
+ *   cc -O2 -o /tmp/embree_standalone tools/embree_standalone.c -lembree3
+ * Rays (../shared/PROTOCOL.md, written by the suite):
+ *   cargo run --release -- rays --scene ../shared/meshes/stanford_bunny.obj --set primary --out /tmp/bunny_primary.rays
+ *   cargo run --release -- rays --scene ../shared/meshes/stanford_bunny.obj --set incoherent --out /tmp/bunny_incoherent.rays
+ * Run (one thread: the calling thread traces; the build uses threads=1):
+ *   /tmp/embree_standalone ../shared/meshes/stanford_bunny.obj /tmp/bunny_primary.rays robust 3
+ *   /tmp/embree_standalone ../shared/meshes/stanford_bunny.obj /tmp/bunny_incoherent.rays fast 3
+ *
+ * Like the suite: build quality medium, RTC_SCENE_FLAG_ROBUST for `robust`, one rtcIntersect1
+ * per ray with an incoherent context, the ray's tnear/tfar as given. Prints the median of the
+ * repeats in Mrays/s and the number of hits (compare with the suite's `hits` column).
+ */
+#include <embree3/rtcore.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+typedef struct { float *v; size_t nv, cv; unsigned *t; size_t nt, ct; } Mesh;
+
+static void *grow(void *p, size_t *cap, size_t need, size_t elem) {
+    if (need <= *cap) return p;
+    *cap = need * 2;
+    p = realloc(p, *cap * elem);
+    if (!p) { fprintf(stderr, "out of memory\n"); exit(1); }
+    return p;
+}
+
+/* Positions and faces of an OBJ file, faces fan-triangulated (v0, vi, vi+1) as the suite does. */
+static Mesh load_obj(const char *path) {
+    Mesh m = {0};
+    FILE *f = fopen(path, "r");
+    if (!f) { perror(path); exit(1); }
+    char line[4096];
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == 'v' && line[1] == ' ') {
+            m.v = grow(m.v, &m.cv, 3 * (m.nv + 1), sizeof(float));
+            if (sscanf(line + 2, "%f %f %f", &m.v[3 * m.nv], &m.v[3 * m.nv + 1], &m.v[3 * m.nv + 2]) != 3) {
+                fprintf(stderr, "%s: bad vertex line: %s", path, line);
+                exit(1);
+            }
+            m.nv++;
+        } else if (line[0] == 'f' && line[1] == ' ') {
+            long idx[64];
+            int n = 0;
+            for (char *tok = strtok(line + 2, " \t\r\n"); tok && n < 64; tok = strtok(NULL, " \t\r\n")) {
+                long i = strtol(tok, NULL, 10);
+                idx[n++] = i < 0 ? (long)m.nv + i : i - 1;
+            }
+            for (int k = 1; k + 1 < n; k++) {
+                m.t = grow(m.t, &m.ct, 3 * (m.nt + 1), sizeof(unsigned));
+                m.t[3 * m.nt] = (unsigned)idx[0];
+                m.t[3 * m.nt + 1] = (unsigned)idx[k];
+                m.t[3 * m.nt + 2] = (unsigned)idx[k + 1];
+                m.nt++;
+            }
+        }
+    }
+    fclose(f);
+    return m;
+}
+
+static float *load_rays(const char *path, size_t *n) {
+    FILE *f = fopen(path, "rb");
+    if (!f) { perror(path); exit(1); }
+    fseek(f, 0, SEEK_END);
+    long bytes = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    if (bytes <= 0 || bytes % 32) { fprintf(stderr, "%s: size %ld is not a multiple of 32\n", path, bytes); exit(1); }
+    float *r = malloc((size_t)bytes);
+    if (!r || fread(r, 1, (size_t)bytes, f) != (size_t)bytes) { fprintf(stderr, "%s: read failed\n", path); exit(1); }
+    fclose(f);
+    *n = (size_t)bytes / 32;
+    return r;
+}
+
+static double now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int main(int argc, char **argv) {
+    if (argc != 5 || (strcmp(argv[3], "robust") && strcmp(argv[3], "fast"))) {
+        fprintf(stderr, "usage: %s MESH.obj RAYS.rays robust|fast REPEATS\n", argv[0]);
+        return 2;
+    }
+    Mesh m = load_obj(argv[1]);
+    size_t nrays;
+    float *rays = load_rays(argv[2], &nrays);
+    int repeats = atoi(argv[4]) > 0 ? atoi(argv[4]) : 1;
+
+    RTCDevice dev = rtcNewDevice("threads=1");
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, m.nv);
+    memcpy(vb, m.v, m.nv * 12);
+    unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, m.nt);
+    memcpy(ib, m.t, m.nt * 12);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitGeometry(g);
+    RTCScene s = rtcNewScene(dev);
+    rtcSetSceneFlags(s, strcmp(argv[3], "robust") ? RTC_SCENE_FLAG_NONE : RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_MEDIUM);
+    rtcAttachGeometry(s, g);
+    rtcReleaseGeometry(g);
+    double t0 = now();
+    rtcCommitScene(s);
+    double build = now() - t0;
+
+    double *times = malloc(sizeof(double) * (size_t)repeats);
+    size_t hits = 0;
+    for (int rep = 0; rep < repeats; rep++) {
+        struct RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+        hits = 0;
+        double start = now();
+        for (size_t i = 0; i < nrays; i++) {
+            const float *r = rays + 8 * i;
+            struct RTCRayHit rh;
+            rh.ray.org_x = r[0]; rh.ray.org_y = r[1]; rh.ray.org_z = r[2]; rh.ray.tnear = r[3];
+            rh.ray.dir_x = r[4]; rh.ray.dir_y = r[5]; rh.ray.dir_z = r[6]; rh.ray.tfar = r[7];
+            rh.ray.time = 0.0f; rh.ray.mask = 0xFFFFFFFFu; rh.ray.id = 0; rh.ray.flags = 0;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(s, &ctx, &rh);
+            hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+        times[rep] = now() - start;
+    }
+    qsort(times, (size_t)repeats, sizeof(double), cmp_double);
+    double median = times[repeats / 2];
+    printf("%s %s: %zu triangles, %zu rays, build %.2f ms, median %.2f ms, %.3f Mrays/s, %zu hits\n",
+           argv[2], argv[3], m.nt, nrays, build * 1e3, median * 1e3, nrays / median / 1e6, hits);
+    rtcReleaseScene(s);
+    rtcReleaseDevice(dev);
+    free(times);
+    free(rays);
+    free(m.v);
+    free(m.t);
+    return 0;
+}
