@@ -5,20 +5,15 @@
 mod common;
 mod partition_kit;
 
-use accelbench::geometry::triangle::Watertight;
-use accelbench::geometry::{Ray, TriangleKernelKind};
-use accelbench::index::{Bsp, BuildError, Index, IndexSpec, build_index, build_index_on};
+use accelbench::geometry::Ray;
+use accelbench::index::{Bsp, Index};
 use accelbench::rays::SplitMix64;
-use accelbench::scene::{Scene, Triangles, generators};
+use accelbench::scene::{Scene, generators};
 use glam::{Vec3, Vec3A};
 use partition_kit::*;
-use std::sync::Arc;
 
 fn bsp_on(scene: &Scene, params: &str) -> Bsp {
-    let spec: IndexSpec = format!("bsp{params}").parse().unwrap();
-    let params = accelbench::index::parse_params::<Bsp>(&spec).unwrap();
-    let geom = Triangles::<Watertight>::new(Arc::from(scene.triangles.as_slice()));
-    build_index_on::<Bsp, _>("bsp", geom, params).unwrap().index
+    build_on::<Bsp>("bsp", scene, params)
 }
 
 /// Axis planes of the tree as `(axis, offset)`; the others as `(normal, offset)`.
@@ -131,32 +126,17 @@ fn degenerate_input_terminates_and_agrees() {
 
 #[test]
 fn each_primitive_tested_at_most_once_per_ray() {
-    for name in ["soup", "stadium", "slivers"] {
-        let scene = generators::generate(name, 2000, 2).unwrap();
-        let geom = Recording::new(&scene);
-        let tree = Bsp::build(&geom, &Default::default()).unwrap();
-        assert!(tree.info().prim_refs > scene.triangles.len(), "{name}");
-        let rays = common::agreement_rays(&scene, 400);
-        assert_each_primitive_once(&tree, &geom, &rays);
-    }
+    assert_tests_each_primitive_once::<Bsp>();
 }
 
 #[test]
 fn structure_figures_are_consistent() {
-    let scene = generators::generate("icosphere", 5000, 1).unwrap();
-    let info = bsp_on(&scene, "").info();
-    assert_eq!(info.nodes, 2 * info.leaves - 1, "a full binary tree");
-    assert!(info.prim_refs >= scene.triangles.len());
-    assert_eq!(info.memory_bytes, info.nodes * 24 + info.prim_refs * 4);
-    assert!(bsp_on(&scene, ":max_depth=4").info().depth <= 5);
+    assert_structure_figures::<Bsp>("bsp", 24);
 }
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    let g = generators::generate("icosphere", 100, 1)
-        .unwrap()
-        .geometry();
-    for (spec, says) in [
+    assert_bad_parameters(&[
         ("bsp:intersect_cost=0.0", "intersect_cost"),
         ("bsp:traversal_cost=inf", "traversal_cost"),
         ("bsp:sweep=false,plane_candidates=0", "candidates"),
@@ -165,14 +145,7 @@ fn bad_parameters_are_typed_errors() {
         ("bsp:leaf_size=0", "leaf_size"),
         ("bsp:empty_bonus=-0.5", "empty_bonus"),
         ("bsp:planes=3", "unknown field"),
-    ] {
-        let spec: IndexSpec = spec.parse().unwrap();
-        let err = build_index(&spec, &g, TriangleKernelKind::Watertight)
-            .err()
-            .unwrap_or_else(|| panic!("{spec} must fail"));
-        assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
-        assert!(err.to_string().contains(says), "{spec}: {err}");
-    }
+    ]);
 }
 
 /// Scored by the exact areas of the convex cells, the primitives' own planes win some splits

@@ -4,20 +4,12 @@
 mod common;
 mod partition_kit;
 
-use accelbench::geometry::TriangleKernelKind;
-use accelbench::geometry::triangle::Watertight;
-use accelbench::index::{BuildError, Index, IndexSpec, KdTree, build_index, build_index_on};
-use accelbench::scene::{Scene, Triangles, generators};
+use accelbench::index::{Index, KdTree};
+use accelbench::scene::{Scene, generators};
 use partition_kit::*;
-use std::sync::Arc;
 
 fn kdtree_on(scene: &Scene, params: &str) -> KdTree {
-    let spec: IndexSpec = format!("kdtree{params}").parse().unwrap();
-    let params = accelbench::index::parse_params::<KdTree>(&spec).unwrap();
-    let geom = Triangles::<Watertight>::new(Arc::from(scene.triangles.as_slice()));
-    build_index_on::<KdTree, _>("kdtree", geom, params)
-        .unwrap()
-        .index
+    build_on::<KdTree>("kdtree", scene, params)
 }
 
 #[test]
@@ -68,46 +60,22 @@ fn degenerate_input_terminates_and_agrees() {
 
 #[test]
 fn each_primitive_tested_at_most_once_per_ray() {
-    for name in ["soup", "stadium", "slivers"] {
-        let scene = generators::generate(name, 2000, 2).unwrap();
-        let geom = Recording::new(&scene);
-        let tree = KdTree::build(&geom, &Default::default()).unwrap();
-        // References are duplicated, or the test proves nothing.
-        assert!(tree.info().prim_refs > scene.triangles.len(), "{name}");
-        let rays = common::agreement_rays(&scene, 400);
-        assert_each_primitive_once(&tree, &geom, &rays);
-    }
+    assert_tests_each_primitive_once::<KdTree>();
 }
 
 #[test]
 fn structure_figures_are_consistent() {
-    let scene = generators::generate("icosphere", 5000, 1).unwrap();
-    let info = kdtree_on(&scene, "").info();
-    assert_eq!(info.nodes, 2 * info.leaves - 1, "a full binary tree");
-    assert!(info.prim_refs >= scene.triangles.len());
-    assert_eq!(info.memory_bytes, info.nodes * 8 + info.prim_refs * 4);
-    let max_depth = kdtree_on(&scene, ":max_depth=4").info().depth;
-    assert!(max_depth <= 5, "depth {max_depth} within max_depth=4");
+    assert_structure_figures::<KdTree>("kdtree", 8);
 }
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    let g = generators::generate("icosphere", 100, 1)
-        .unwrap()
-        .geometry();
-    for (spec, says) in [
+    assert_bad_parameters(&[
         ("kdtree:intersect_cost=-1.0", "intersect_cost"),
         ("kdtree:traversal_cost=nan", "traversal_cost"),
         ("kdtree:empty_bonus=1.0", "empty_bonus"),
         ("kdtree:max_depth=65", "max_depth"),
         ("kdtree:leaf_size=0", "leaf_size"),
         ("kdtree:leafsize=3", "unknown field"),
-    ] {
-        let spec: IndexSpec = spec.parse().unwrap();
-        let err = build_index(&spec, &g, TriangleKernelKind::Watertight)
-            .err()
-            .unwrap_or_else(|| panic!("{spec} must fail"));
-        assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
-        assert!(err.to_string().contains(says), "{spec}: {err}");
-    }
+    ]);
 }

@@ -3,10 +3,10 @@
 #![allow(dead_code)]
 
 use accelbench::geometry::triangle::Watertight;
-use accelbench::geometry::{Aabb, Ray, Triangle};
-use accelbench::index::{Counters, Index};
+use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};
+use accelbench::index::{BuildError, Counters, Index, IndexSpec, build_index, build_index_on};
 use accelbench::rays::SplitMix64;
-use accelbench::scene::{Geometry, Scene, Triangles};
+use accelbench::scene::{Geometry, Scene, Triangles, generators};
 use glam::{Vec3, Vec3A};
 use std::sync::{Arc, Mutex};
 
@@ -206,4 +206,57 @@ pub fn assert_each_primitive_once<I: Index>(index: &I, geom: &Recording, rays: &
     }
     assert!(total > 0, "the rays tested something");
     assert_eq!(repeated, 0, "primitives tested twice in one ray");
+}
+
+/// Index `I`, registered as `name`, built with parameters `params` (`""` or `":key=value,.."`)
+/// over the scene's triangles with the watertight kernel.
+pub fn build_on<I: Index>(name: &str, scene: &Scene, params: &str) -> I {
+    let spec: IndexSpec = format!("{name}{params}").parse().unwrap();
+    let params = accelbench::index::parse_params::<I>(&spec).unwrap();
+    let geom = Triangles::<Watertight>::new(Arc::from(scene.triangles.as_slice()));
+    build_index_on::<I, _>(name, geom, params).unwrap().index
+}
+
+/// On scenes where `I` (default parameters) stores primitives in several leaves, it still tests
+/// each primitive at most once per ray.
+pub fn assert_tests_each_primitive_once<I: Index>() {
+    for name in ["soup", "stadium", "slivers"] {
+        let scene = generators::generate(name, 2000, 2).unwrap();
+        let geom = Recording::new(&scene);
+        let tree = I::build(&geom, &Default::default()).unwrap();
+        // References are duplicated, or the test proves nothing.
+        assert!(tree.info().prim_refs > scene.triangles.len(), "{name}");
+        let rays = crate::common::agreement_rays(&scene, 400);
+        assert_each_primitive_once(&tree, &geom, &rays);
+    }
+}
+
+/// The figures of `I` (registered as `name`, nodes of `node_bytes`, 4-byte ids) describe a full
+/// binary tree, and `max_depth=4` bounds its depth.
+pub fn assert_structure_figures<I: Index>(name: &str, node_bytes: usize) {
+    let scene = generators::generate("icosphere", 5000, 1).unwrap();
+    let info = build_on::<I>(name, &scene, "").info();
+    assert_eq!(info.nodes, 2 * info.leaves - 1, "a full binary tree");
+    assert!(info.prim_refs >= scene.triangles.len());
+    assert_eq!(
+        info.memory_bytes,
+        info.nodes * node_bytes + info.prim_refs * 4
+    );
+    let depth = build_on::<I>(name, &scene, ":max_depth=4").info().depth;
+    assert!(depth <= 5, "depth {depth} within max_depth=4");
+}
+
+/// Each spec fails to build with a parameter error whose message contains the given words.
+pub fn assert_bad_parameters(cases: &[(&str, &str)]) {
+    let g = generators::generate("icosphere", 100, 1)
+        .unwrap()
+        .geometry();
+    for &(spec, says) in cases {
+        let spec: IndexSpec = spec.parse().unwrap();
+        let err = build_index(&spec, &g, TriangleKernelKind::Watertight)
+            .err()
+            .unwrap_or_else(|| panic!("{spec} must fail"));
+        assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
+        assert!(err.to_string().contains(says), "{spec}: {err}");
+    }
 }

@@ -25,19 +25,16 @@ use crate::geometry::clip::box_halfspace_bounds;
 use crate::geometry::polyhedron::ConvexPolyhedron;
 use crate::index::BuildError;
 use crate::index::kdtree::sweep::{Weights, best_axis_split};
+use crate::index::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
 
 /// Weights and limits (validated by the caller).
 pub(super) struct Limits {
-    pub intersect: f32,
-    pub traversal: f32,
-    pub empty_bonus: f32,
+    pub sah: SahParams,
     pub sweep: bool,
     pub axis_candidates: u32,
     pub plane_candidates: u32,
-    pub max_depth: u32,
-    pub leaf_size: u32,
 }
 
 /// A primitive in a node and conservative bounds of its part there.
@@ -55,20 +52,13 @@ struct Plane {
     axis: Option<usize>,
 }
 
-pub(super) struct Built {
-    pub nodes: Vec<BspNode>,
-    pub ids: Vec<u32>,
-    pub depth: usize,
-    pub leaves: usize,
-    pub empty_leaves: usize,
-    pub axis_splits: usize,
-}
-
 struct Builder<'a, G: Geometry> {
     geom: &'a G,
     limits: &'a Limits,
     pad: f32,
-    out: Built,
+    out: Built<BspNode>,
+    /// Interior nodes split by an axis plane.
+    axis_splits: usize,
 }
 
 pub(super) fn build<G: Geometry>(
@@ -76,7 +66,7 @@ pub(super) fn build<G: Geometry>(
     root: Aabb,
     pad: f32,
     limits: &Limits,
-) -> Result<Built, BuildError> {
+) -> Result<Built<BspNode>, BuildError> {
     let refs = (0..geom.len() as u32)
         .map(|prim| Ref {
             prim,
@@ -93,10 +83,14 @@ pub(super) fn build<G: Geometry>(
             depth: 0,
             leaves: 0,
             empty_leaves: 0,
-            axis_splits: 0,
+            extra: Vec::new(),
         },
+        axis_splits: 0,
     };
     b.node(refs, root, ConvexPolyhedron::from_box(&root), 0)?;
+    let interior = b.out.nodes.len() - b.out.leaves;
+    let general = (interior - b.axis_splits) as f64 / interior.max(1) as f64;
+    b.out.extra = vec![("general_plane_fraction".into(), general)];
     Ok(b.out)
 }
 
@@ -123,8 +117,8 @@ impl<G: Geometry> Builder<'_, G> {
         if at as u64 > MAX_LINK as u64 {
             return Err(too_big());
         }
-        let plane = if refs.len() as u32 <= self.limits.leaf_size || depth >= self.limits.max_depth
-        {
+        let sah = &self.limits.sah;
+        let plane = if refs.len() as u32 <= sah.leaf_size || depth >= sah.max_depth {
             None
         } else {
             self.best_plane(&refs, &cell, &poly)
@@ -139,7 +133,7 @@ impl<G: Geometry> Builder<'_, G> {
             self.tighten(below_cell, &below_poly),
             self.tighten(above_cell, &above_poly),
         );
-        self.out.axis_splits += plane.axis.is_some() as usize;
+        self.axis_splits += plane.axis.is_some() as usize;
         let (below, above) = self.classify(refs, &plane, &below_cell, &above_cell);
         self.out.nodes.push(BspNode::leaf(0, 0)); // placeholder, patched below
         self.node(below, below_cell, below_poly, depth + 1)?;
@@ -263,11 +257,7 @@ impl<G: Geometry> Builder<'_, G> {
         let n = refs.len();
         let mut planes = Vec::new();
         if l.sweep {
-            let w = Weights {
-                intersect: l.intersect,
-                traversal: l.traversal,
-                empty_bonus: l.empty_bonus,
-            };
+            let w = Weights::from(&l.sah);
             let mut events = Default::default();
             if let Some((axis, s, _)) =
                 best_axis_split(n, |i| refs[i].b, cell, self.pad, &w, &mut events)
@@ -283,7 +273,7 @@ impl<G: Geometry> Builder<'_, G> {
         }
         planes.extend(self.candidates(refs, cell));
         let mut best = None;
-        let mut best_cost = l.intersect as f64 * n as f64;
+        let mut best_cost = l.sah.intersect as f64 * n as f64;
         for p in planes {
             let (mut nb, mut na) = (0usize, 0usize);
             for r in refs {
@@ -299,12 +289,12 @@ impl<G: Geometry> Builder<'_, G> {
                 continue; // misses the cell
             }
             let bonus = if nb == 0 || na == 0 {
-                1.0 - l.empty_bonus as f64
+                1.0 - l.sah.empty_bonus as f64
             } else {
                 1.0
             };
-            let cost = l.traversal as f64
-                + l.intersect as f64 * bonus * (ab * nb as f64 + aa * na as f64) / area;
+            let cost = l.sah.traversal as f64
+                + l.sah.intersect as f64 * bonus * (ab * nb as f64 + aa * na as f64) / area;
             if cost < best_cost {
                 best_cost = cost;
                 best = Some(p);

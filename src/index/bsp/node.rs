@@ -1,5 +1,8 @@
-//! The BSP node: an arbitrary plane and a child link, 24 bytes.
+//! The BSP node: an arbitrary plane and a child link, 24 bytes, and its near/far step.
 
+use crate::geometry::Ray;
+use crate::geometry::float::gamma;
+use crate::index::near_far::{CROSSING_REL, SplitNode, Step};
 use glam::Vec3A;
 
 /// One BSP node. An interior node holds its plane `normal . p = offset` (unit normal); the child
@@ -68,6 +71,85 @@ impl BspNode {
                 offset: self.offset,
                 above: self.link,
             }
+        }
+    }
+}
+
+/// Error bound factors of the two dot products of a crossing.
+const NUM_ERR: f32 = gamma(4);
+const DEN_ERR: f32 = gamma(3);
+
+/// What a ray precomputes for its BSP steps: origin and direction and their absolute values
+/// (for the error bounds of the dot products).
+pub struct BspRay {
+    origin: Vec3A,
+    dir: Vec3A,
+    abs_origin: Vec3A,
+    abs_dir: Vec3A,
+}
+
+impl SplitNode for BspNode {
+    type RayData = BspRay;
+
+    #[inline(always)]
+    fn prepare(ray: &Ray) -> BspRay {
+        BspRay {
+            origin: ray.origin,
+            dir: ray.dir,
+            abs_origin: ray.origin.abs(),
+            abs_dir: ray.dir.abs(),
+        }
+    }
+
+    /// Crossing of the plane `n . p = offset`: `t = num / den` with `num = offset - n . o` and
+    /// `den = n . d`. The computed `num` and `den` are within `e_num = gamma(4) (|n| . |o| +
+    /// |offset|)` and `e_den = gamma(3) |n| . |d|` of the exact ones, so the exact crossing is
+    /// within `(e_num + |t| e_den) / (|den| - e_den)` of `num / den`; that bound, and the bracket,
+    /// are widened by [`CROSSING_REL`] for their own rounding. When `|den| <= e_den` (a ray
+    /// parallel or nearly parallel to the plane) both children are visited over the whole
+    /// interval, the origin's side first.
+    #[inline(always)]
+    fn step(&self, at: u32, ray: &BspRay) -> Step {
+        if self.link & LEAF_BIT != 0 {
+            return Step::Leaf {
+                first: self.first,
+                count: self.link & MAX_LINK,
+            };
+        }
+        let normal = Vec3A::from(self.normal);
+        let (below, above) = (at + 1, self.link);
+        let num = self.offset - normal.dot(ray.origin);
+        let den = normal.dot(ray.dir);
+        let abs_normal = normal.abs();
+        let e_num = NUM_ERR * (abs_normal.dot(ray.abs_origin) + self.offset.abs());
+        let e_den = DEN_ERR * abs_normal.dot(ray.abs_dir);
+        let margin = den.abs() - e_den;
+        if margin <= 0.0 {
+            let (first, second) = if num >= 0.0 {
+                (below, above)
+            } else {
+                (above, below)
+            };
+            return Step::Cross {
+                first,
+                second,
+                lo: f32::NEG_INFINITY,
+                hi: f32::INFINITY,
+            };
+        }
+        let t = num / den;
+        let err =
+            (e_num + t.abs() * e_den) / margin * (1.0 + CROSSING_REL) + t.abs() * CROSSING_REL;
+        let (first, second) = if den > 0.0 {
+            (below, above)
+        } else {
+            (above, below)
+        };
+        Step::Cross {
+            first,
+            second,
+            lo: t - err,
+            hi: t + err,
         }
     }
 }

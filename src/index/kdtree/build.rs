@@ -21,36 +21,9 @@ use super::node::{KdNode, MAX_PAYLOAD};
 use super::sweep::{Event, MAX_ITEM, Weights, best_split_sorted, push_events};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
+use crate::index::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
-
-/// The SAH weights and limits (validated by the caller).
-pub(super) struct Costs {
-    pub intersect: f32,
-    pub traversal: f32,
-    pub empty_bonus: f32,
-    pub max_depth: u32,
-    pub leaf_size: u32,
-}
-
-impl Costs {
-    fn weights(&self) -> Weights {
-        Weights {
-            intersect: self.intersect,
-            traversal: self.traversal,
-            empty_bonus: self.empty_bonus,
-        }
-    }
-}
-
-/// The flattened tree and figures for reports.
-pub(super) struct Built {
-    pub nodes: Vec<KdNode>,
-    pub ids: Vec<u32>,
-    pub depth: usize,
-    pub leaves: usize,
-    pub empty_leaves: usize,
-}
 
 /// The events of a node's primitives on each axis, each list sorted by [`Event::order`]; the
 /// items are primitive ids (a primitive is at most once in a node), and every primitive of the
@@ -67,7 +40,7 @@ enum Side {
 
 struct Builder<'a, G: Geometry> {
     geom: &'a G,
-    costs: &'a Costs,
+    costs: &'a SahParams,
     pad: f32,
     nodes: Vec<KdNode>,
     ids: Vec<u32>,
@@ -88,11 +61,17 @@ pub(super) fn build<G: Geometry>(
     geom: &G,
     root: Aabb,
     pad: f32,
-    costs: &Costs,
-) -> Result<Built, BuildError> {
+    costs: &SahParams,
+) -> Result<Built<KdNode>, BuildError> {
     if geom.len() > MAX_ITEM as usize {
         return Err(too_big("primitives"));
     }
+    let events = root_events(geom, pad);
+    subtree(geom, costs, pad, events, geom.len(), root, 0, PARALLEL)
+}
+
+/// The sorted events of all primitives' bounds (grown by `pad`).
+fn root_events<G: Geometry>(geom: &G, pad: f32) -> Events {
     let n = geom.len();
     let mut events: Events = std::array::from_fn(|_| Vec::with_capacity(2 * n));
     for prim in 0..n as u32 {
@@ -101,26 +80,110 @@ pub(super) fn build<G: Geometry>(
     for list in &mut events {
         list.sort_unstable_by(Event::order);
     }
+    events
+}
+
+/// Which nodes build their two children in parallel (`rayon::join`): those of the top `levels`
+/// levels with at least `min_prims` primitives.
+#[derive(Debug, Clone, Copy)]
+struct Parallel {
+    levels: u32,
+    min_prims: usize,
+}
+
+/// Up to `2^6` tasks, enough to keep a few cores busy while the sequential subtrees stay large.
+const PARALLEL: Parallel = Parallel {
+    levels: 6,
+    min_prims: 2048,
+};
+
+/// Builds the subtree of `cell` over the `n` primitives with events `events` (`depth` of its
+/// root), splitting the work into two `rayon::join` tasks as `par` says. The tree
+/// is the one the sequential [`Builder::node`] makes: the same choices, the same depth-first
+/// layout ([`join_subtrees`] only shifts the links of each part).
+#[allow(clippy::too_many_arguments)]
+fn subtree<G: Geometry>(
+    geom: &G,
+    costs: &SahParams,
+    pad: f32,
+    events: Events,
+    n: usize,
+    cell: Aabb,
+    depth: u32,
+    par: Parallel,
+) -> Result<Built<KdNode>, BuildError> {
     let mut b = Builder {
         geom,
         costs,
         pad,
         nodes: Vec::new(),
         ids: Vec::new(),
-        side: vec![Side::Both; n],
+        side: vec![Side::Both; geom.len()],
         straddling: Vec::new(),
         pool: Vec::new(),
         depth: 0,
         leaves: 0,
         empty_leaves: 0,
     };
-    b.node(events, n, root, 0)?;
+    let split = (par.levels > 0 && n >= par.min_prims)
+        .then(|| b.choose(&events, n, &cell, depth))
+        .flatten();
+    let Some((axis, s)) = split else {
+        b.node(events, n, cell, depth)?;
+        return Ok(Built {
+            nodes: b.nodes,
+            ids: b.ids,
+            depth: b.depth,
+            leaves: b.leaves,
+            empty_leaves: b.empty_leaves,
+            extra: Vec::new(),
+        });
+    };
+    let (below_cell, above_cell) = split_cell(&cell, axis, s);
+    let ((below, nb), (above, na)) = b.partition(events, axis, s, &below_cell, &above_cell);
+    drop(b);
+    let par = Parallel {
+        levels: par.levels - 1,
+        ..par
+    };
+    let part = |events, n, cell| subtree(geom, costs, pad, events, n, cell, depth + 1, par);
+    let (below, above) = rayon::join(
+        || part(below, nb, below_cell),
+        || part(above, na, above_cell),
+    );
+    join_subtrees(axis, s, below?, above?)
+}
+
+/// The tree of an interior node on `axis` at `s` over its two built subtrees: the node, then
+/// the subtree below (links shifted by one node), then the one above (links shifted by the
+/// nodes and ids before it).
+fn join_subtrees(
+    axis: usize,
+    s: f32,
+    below: Built<KdNode>,
+    above: Built<KdNode>,
+) -> Result<Built<KdNode>, BuildError> {
+    let above_at = 1 + below.nodes.len();
+    if (above_at + above.nodes.len()) as u64 > MAX_PAYLOAD as u64 + 1 {
+        return Err(too_big("nodes"));
+    }
+    if below.ids.len() + above.ids.len() > u32::MAX as usize {
+        return Err(too_big("primitive references"));
+    }
+    let mut nodes = Vec::with_capacity(above_at + above.nodes.len());
+    nodes.push(KdNode::interior(axis, s, above_at as u32));
+    nodes.extend(below.nodes.iter().map(|n| n.shifted(1, 0)));
+    let (node_shift, id_shift) = (above_at as u32, below.ids.len() as u32);
+    nodes.extend(above.nodes.iter().map(|n| n.shifted(node_shift, id_shift)));
+    let mut ids = below.ids;
+    ids.extend(above.ids);
     Ok(Built {
-        nodes: b.nodes,
-        ids: b.ids,
-        depth: b.depth,
-        leaves: b.leaves,
-        empty_leaves: b.empty_leaves,
+        nodes,
+        ids,
+        depth: below.depth.max(above.depth),
+        leaves: below.leaves + above.leaves,
+        empty_leaves: below.empty_leaves + above.empty_leaves,
+        extra: Vec::new(),
     })
 }
 
@@ -140,12 +203,7 @@ impl<G: Geometry> Builder<'_, G> {
         if at as u64 > MAX_PAYLOAD as u64 {
             return Err(too_big("nodes"));
         }
-        let split = if n as u32 <= self.costs.leaf_size || depth >= self.costs.max_depth {
-            None
-        } else {
-            best_split_sorted(&events, n, &cell, &self.costs.weights()).map(|(a, s, _)| (a, s))
-        };
-        let Some((axis, s)) = split else {
+        let Some((axis, s)) = self.choose(&events, n, &cell, depth) else {
             let leaf = self.leaf(&events[0], depth);
             self.pool.extend(events);
             return leaf;
@@ -158,6 +216,14 @@ impl<G: Geometry> Builder<'_, G> {
         self.node(above, na, above_cell, depth + 1)?;
         self.nodes[at] = KdNode::interior(axis, s, above_at);
         Ok(())
+    }
+
+    /// The plane `(axis, position)` that splits the node, or `None` for a leaf.
+    fn choose(&self, events: &Events, n: usize, cell: &Aabb, depth: u32) -> Option<(usize, f32)> {
+        if n as u32 <= self.costs.leaf_size || depth >= self.costs.max_depth {
+            return None;
+        }
+        best_split_sorted(events, n, cell, &Weights::from(self.costs)).map(|(a, s, _)| (a, s))
     }
 
     /// A leaf over the primitives whose start events are in `events` (one axis's list).

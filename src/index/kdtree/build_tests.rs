@@ -3,8 +3,8 @@
 
 use super::*;
 use crate::geometry::triangle::Watertight;
-use crate::index::kdtree::default_max_depth;
 use crate::index::kdtree::sweep::best_axis_split;
+use crate::index::near_far::default_max_depth;
 use crate::index::near_far::{scene_bounds, scene_pad};
 use crate::scene::{Triangles, generators};
 use std::sync::Arc;
@@ -27,7 +27,7 @@ impl<G: Geometry> Oracle<'_, G> {
                 |i| refs[i].1,
                 &cell,
                 self.b.pad,
-                &c.weights(),
+                &Weights::from(c),
                 &mut self.scratch,
             )
         };
@@ -69,8 +69,8 @@ impl<G: Geometry> Oracle<'_, G> {
     }
 }
 
-fn costs(n: usize, intersect: f32, empty_bonus: f32, leaf_size: u32) -> Costs {
-    Costs {
+fn costs(n: usize, intersect: f32, empty_bonus: f32, leaf_size: u32) -> SahParams {
+    SahParams {
         intersect,
         traversal: 1.0,
         empty_bonus,
@@ -129,6 +129,31 @@ fn event_lists_build_the_tree_of_a_sort_per_node() {
         splits += built.nodes.len() - built.leaves;
     }
     assert!(splits > 1000, "the trees split: {splits}");
+}
+
+#[test]
+fn parallel_build_equals_the_sequential_one() {
+    let scene = generators::generate("stadium", 3000, 4).unwrap();
+    let geom = Triangles::<Watertight>::new(Arc::from(scene.triangles.as_slice()));
+    let root = scene_bounds(&geom, "kdtree").unwrap();
+    let pad = scene_pad(&root);
+    let c = costs(geom.len(), 80.0, 0.2, 1);
+    let tree = |levels| {
+        let par = Parallel {
+            levels,
+            min_prims: 1,
+        };
+        let events = root_events(&geom, pad);
+        subtree(&geom, &c, pad, events, geom.len(), root, 0, par).unwrap()
+    };
+    let (sequential, parallel) = (tree(0), tree(8));
+    assert!(sequential.nodes.len() > 1000, "the tree splits");
+    assert_eq!(sequential.nodes, parallel.nodes);
+    assert_eq!(sequential.ids, parallel.ids);
+    assert_eq!(
+        (sequential.depth, sequential.leaves, sequential.empty_leaves),
+        (parallel.depth, parallel.leaves, parallel.empty_leaves)
+    );
 }
 
 #[test]

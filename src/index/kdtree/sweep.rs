@@ -3,6 +3,7 @@
 //! general BSP (sorted per node).
 
 use crate::geometry::Aabb;
+use crate::index::near_far::SahParams;
 use std::cmp::Ordering;
 
 /// SAH weights: cost of a primitive test, of a traversal step, and the fraction of the cost
@@ -12,6 +13,16 @@ pub(crate) struct Weights {
     pub intersect: f32,
     pub traversal: f32,
     pub empty_bonus: f32,
+}
+
+impl From<&SahParams> for Weights {
+    fn from(p: &SahParams) -> Weights {
+        Weights {
+            intersect: p.intersect,
+            traversal: p.traversal,
+            empty_bonus: p.empty_bonus,
+        }
+    }
 }
 
 /// Largest item number an [`Event`] holds.

@@ -1,0 +1,200 @@
+//! The near/far traversal loop over a flat array of nodes (depth-first, the child below a plane
+//! right after its parent) and one array of primitive ids that leaves index contiguously.
+//!
+//! Per ray: the node type's precomputation ([`SplitNode::prepare`], e.g. the inverse direction)
+//! once, then per node one [`SplitNode::step`] (one crossing or a leaf range), one compare per
+//! child and at most one push of a `(node, t0, t1)` span on a fixed stack on the call stack
+//! (never zeroed, never allocated). After a leaf, pending spans that start strictly after the
+//! best hit are dropped as they are popped, so the walk ends as soon as the best hit lies before
+//! every pending span.
+
+use super::MAX_TREE_DEPTH;
+use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
+use crate::index::Stats;
+use crate::index::mailbox::{Mailbox, with_mailbox};
+use crate::index::stack::Stack;
+use crate::scene::Geometry;
+
+/// What a node tells the walk.
+pub enum Step {
+    /// A leaf over ids `first..first + count` of the id array.
+    Leaf { first: u32, count: u32 },
+    /// Children in ray order: `first` holds the ray up to the crossing, `second` after it;
+    /// `[lo, hi]` contains the exact crossing parameter. `lo = hi = +inf` visits `first` only,
+    /// `lo = hi = -inf` `second` only, `lo = -inf, hi = +inf` both over the whole interval.
+    Cross {
+        first: u32,
+        second: u32,
+        lo: f32,
+        hi: f32,
+    },
+}
+
+/// A node of a binary space partition that the near/far walk can step through.
+pub trait SplitNode: Copy + std::fmt::Debug + Send + Sync + 'static {
+    /// What a ray computes once for all its steps (origin and inverse direction, say).
+    type RayData;
+    /// The per-ray precomputation.
+    fn prepare(ray: &Ray) -> Self::RayData;
+    /// The step at this node, stored at index `at` (its child below the plane is `at + 1`).
+    fn step(&self, at: u32, ray: &Self::RayData) -> Step;
+}
+
+/// A node and the parameter interval of the ray inside it.
+#[derive(Clone, Copy)]
+struct Span {
+    node: u32,
+    t0: f32,
+    t1: f32,
+}
+
+/// Walks the tree `nodes` (root cell `bounds`) front to back, calling
+/// `leaf(ids, stats) -> stop` at each leaf; `bound()` gives the current best `t` (pending spans
+/// starting strictly after it are skipped).
+#[inline(always)]
+fn walk<N: SplitNode, S: Stats>(
+    nodes: &[N],
+    ids: &[u32],
+    bounds: &Aabb,
+    ray: &Ray,
+    stats: &mut S,
+    mut leaf: impl FnMut(&[u32], &mut S) -> bool,
+    bound: impl Fn() -> f32,
+) {
+    let Some((t0, t1)) = bounds.ray_interval(ray, ray.t_min, ray.t_max) else {
+        return;
+    };
+    let pre = N::prepare(ray);
+    // One push per level: the stack holds at most `depth` spans.
+    let mut stack = Stack::<Span, { MAX_TREE_DEPTH as usize + 1 }>::new();
+    let mut cur = Span { node: 0, t0, t1 };
+    loop {
+        stats.node_visit();
+        match nodes[cur.node as usize].step(cur.node, &pre) {
+            Step::Leaf { first, count } => {
+                if leaf(&ids[first as usize..(first + count) as usize], stats) {
+                    return;
+                }
+                cur = loop {
+                    match stack.pop() {
+                        None => return,
+                        Some(s) if s.t0 <= bound() => break s,
+                        Some(_) => {}
+                    }
+                };
+            }
+            Step::Cross {
+                first,
+                second,
+                lo,
+                hi,
+            } => {
+                if hi >= cur.t0 {
+                    if lo <= cur.t1 {
+                        stack.push(Span {
+                            node: second,
+                            t0: cur.t0.max(lo),
+                            t1: cur.t1,
+                        });
+                    }
+                    cur = Span {
+                        node: first,
+                        t0: cur.t0,
+                        t1: cur.t1.min(hi),
+                    };
+                } else {
+                    // `hi < t0 <= t1`, so `lo <= t1`: the second child only.
+                    cur = Span {
+                        node: second,
+                        t0: cur.t0.max(lo),
+                        t1: cur.t1,
+                    };
+                }
+            }
+        }
+    }
+}
+
+/// Tests the leaf's primitives not yet tested for this ray, keeping the closest hit in `best`.
+#[inline(always)]
+fn closest_in_leaf<G: Geometry, S: Stats>(
+    geom: &G,
+    ray: &Ray,
+    prims: &[u32],
+    mb: &mut Mailbox,
+    best: &mut ClosestHit,
+    stats: &mut S,
+) {
+    for &p in prims {
+        if mb.first_visit(p) {
+            stats.prim_test();
+            if let Some(t) = geom.intersect(p, ray, best.t()) {
+                best.offer(t, p);
+            }
+        }
+    }
+}
+
+/// The closest hit by near/far traversal (see the module doc of [`super`] for why it matches
+/// brute force).
+#[inline]
+pub(super) fn closest_hit<N: SplitNode, G: Geometry, S: Stats>(
+    nodes: &[N],
+    ids: &[u32],
+    bounds: &Aabb,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> Option<Hit> {
+    with_mailbox(geom.len(), |mb| {
+        let best = std::cell::Cell::new(ClosestHit::new(ray.t_max));
+        walk(
+            nodes,
+            ids,
+            bounds,
+            ray,
+            stats,
+            |prims, stats| {
+                let mut b = best.get();
+                closest_in_leaf(geom, ray, prims, mb, &mut b, stats);
+                best.set(b);
+                false
+            },
+            || best.get().t(),
+        );
+        best.get().get()
+    })
+}
+
+/// Whether any primitive is hit (stops at the first).
+#[inline]
+pub(super) fn any_hit<N: SplitNode, G: Geometry, S: Stats>(
+    nodes: &[N],
+    ids: &[u32],
+    bounds: &Aabb,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> bool {
+    with_mailbox(geom.len(), |mb| {
+        let mut found = false;
+        walk(
+            nodes,
+            ids,
+            bounds,
+            ray,
+            stats,
+            |prims, stats| {
+                found = prims.iter().any(|&p| {
+                    mb.first_visit(p) && {
+                        stats.prim_test();
+                        geom.intersect(p, ray, ray.t_max).is_some()
+                    }
+                });
+                found
+            },
+            || ray.t_max,
+        );
+        found
+    })
+}
