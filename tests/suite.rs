@@ -61,6 +61,7 @@ fn config(indices: &[&str]) -> SuiteConfig {
         verify_budget: u64::MAX,
         brute_timing_budget: u64::MAX,
         timed: true,
+        modes: Vec::new(),
     }
 }
 

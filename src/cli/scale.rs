@@ -97,6 +97,7 @@ pub fn run(a: ScaleArgs) -> anyhow::Result<()> {
         verify_budget: 500_000_000,
         brute_timing_budget: 2_000_000_000,
         timed: true,
+        modes: Vec::new(),
     };
     let pb = progress_bar(a.quiet);
     let mut rows = Vec::new();

@@ -4,7 +4,7 @@
 use crate::geometry::TriangleKernelKind;
 use crate::harness::suite::SuiteConfig;
 use crate::harness::workload::{RaySet, SetSizes};
-use crate::index::{IndexSpec, index_names};
+use crate::index::{IndexSpec, TraceMode, index_names};
 use crate::scene::generators::BUILTIN_NAMES;
 use crate::scene::{Scene, load_scene, meshes_in};
 use anyhow::Context;
@@ -41,6 +41,25 @@ pub struct SuiteArgs {
     /// No progress bars.
     #[arg(long)]
     pub quiet: bool,
+    /// Also trace every set with the previous ray's hit primitive tested first ("check last hit
+    /// first"; rows `INDEX+last-hit`).
+    #[arg(long)]
+    pub last_hit: bool,
+    /// Also trace the coherent sets (primary, shadow, dof, motion, lens) in packets of 4 or 8
+    /// neighbouring rays (rows `INDEX+packetsN`; `bvh` traverses packets, the others ray by ray).
+    #[arg(long, value_parser = parse_packet_size)]
+    pub packets: Option<usize>,
+}
+
+/// A packet size: 4 or 8.
+fn parse_packet_size(s: &str) -> Result<usize, String> {
+    match s.trim() {
+        "4" => Ok(4),
+        "8" => Ok(8),
+        other => Err(format!(
+            "packet size '{other}' is not supported: use 4 or 8"
+        )),
+    }
 }
 
 /// Splits a comma-separated list whose items may carry their own `key=value,key=value`
@@ -137,6 +156,16 @@ impl SuiteArgs {
         }
     }
 
+    /// The modes besides ray by ray that `--last-hit` and `--packets` ask for.
+    pub fn modes(&self) -> Vec<TraceMode> {
+        let mut v = Vec::new();
+        if self.last_hit {
+            v.push(TraceMode::LastHit);
+        }
+        v.extend(self.packets.map(TraceMode::Packets));
+        v
+    }
+
     /// The suite configuration for these arguments.
     pub fn config(
         &self,
@@ -161,6 +190,7 @@ impl SuiteArgs {
             verify_budget: if q { 200_000_000 } else { 500_000_000 },
             brute_timing_budget: if q { 20_000_000 } else { 200_000_000 },
             timed,
+            modes: self.modes(),
         })
     }
 }
