@@ -30,6 +30,7 @@ fn config(indices: &[&str]) -> SuiteConfig {
         brute_timing_budget: u64::MAX,
         timed: true,
         shard: Shard::WHOLE,
+        modes: Vec::new(),
     }
 }
 

@@ -3,9 +3,12 @@
 
 use super::parse_kernel;
 use super::{parse_threads, with_threads};
+use crate::camera::ModelKind;
 use crate::geometry::TriangleKernelKind;
 use crate::index::{IndexSpec, build_index};
-use crate::render::{HeatmapKind, RenderOptions, render_heatmap, render_shaded};
+use crate::render::{
+    Filter, HeatmapKind, RenderOptions, Sampling, render_heatmap, render_shaded_with,
+};
 use crate::scene::load_scene;
 use anyhow::Context;
 use std::path::PathBuf;
@@ -34,6 +37,16 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = parse_threads)]
     threads: Option<usize>,
+    /// Samples per pixel of a shaded render (stratified film, lens and time samples).
+    #[arg(long, default_value_t = 1)]
+    spp: u32,
+    /// Reconstruction filter of the samples of a pixel.
+    #[arg(long, value_enum, default_value_t = Filter::Box)]
+    filter: Filter,
+    /// Camera model of a shaded render: pinhole, dof (thin lens), motion (moving eye), lens
+    /// (barrel distortion); defaults relative to the scene as for the ray sets.
+    #[arg(long, value_enum, default_value_t = ModelKind::Pinhole)]
+    camera: ModelKind,
     /// Triangle kernel every index uses.
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
@@ -45,6 +58,16 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
         height: a.height,
     };
     opts.validate()?;
+    let sampling = Sampling {
+        spp: a.spp,
+        filter: a.filter,
+        camera: a.camera,
+        ..Sampling::default()
+    };
+    anyhow::ensure!(
+        a.heatmap.is_none() || (a.spp == 1 && a.camera == ModelKind::Pinhole),
+        "--spp and --camera apply to shaded renders; a heat map counts one pinhole ray per pixel"
+    );
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
     let geom = scene.geometry();
@@ -52,7 +75,7 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let img = with_threads(threads, || match a.heatmap {
         Some(kind) => render_heatmap(&scene, index.as_ref(), &opts, kind),
-        None => render_shaded(&scene, index.as_ref(), &opts),
+        None => render_shaded_with(&scene, index.as_ref(), &opts, &sampling),
     })??;
     let secs = start.elapsed().as_secs_f64();
     img.write_png(&a.out)?;

@@ -4,7 +4,7 @@
 use crate::geometry::TriangleKernelKind;
 use crate::harness::suite::{Shard, SuiteConfig};
 use crate::harness::workload::{RaySet, SetSizes};
-use crate::index::{IndexSpec, index_names};
+use crate::index::{IndexSpec, TraceMode, index_names};
 use crate::scene::generators::BUILTIN_NAMES;
 use crate::scene::{Scene, load_scene, meshes_in};
 use anyhow::Context;
@@ -45,6 +45,25 @@ pub struct SuiteArgs {
     /// folders with `accelbench merge`.
     #[arg(long, default_value = "1/1")]
     pub shard: Shard,
+    /// Also trace every set with the previous ray's hit primitive tested first ("check last hit
+    /// first"; rows `INDEX+last-hit`).
+    #[arg(long)]
+    pub last_hit: bool,
+    /// Also trace the coherent sets (primary, shadow, dof, motion, lens) in packets of 4 or 8
+    /// neighbouring rays (rows `INDEX+packetsN`; `bvh` traverses packets, the others ray by ray).
+    #[arg(long, value_parser = parse_packet_size)]
+    pub packets: Option<usize>,
+}
+
+/// A packet size: 4 or 8.
+fn parse_packet_size(s: &str) -> Result<usize, String> {
+    match s.trim() {
+        "4" => Ok(4),
+        "8" => Ok(8),
+        other => Err(format!(
+            "packet size '{other}' is not supported: use 4 or 8"
+        )),
+    }
 }
 
 /// Splits a comma-separated list whose items may carry their own `key=value,key=value`
@@ -141,6 +160,16 @@ impl SuiteArgs {
         }
     }
 
+    /// The modes besides ray by ray that `--last-hit` and `--packets` ask for.
+    pub fn modes(&self) -> Vec<TraceMode> {
+        let mut v = Vec::new();
+        if self.last_hit {
+            v.push(TraceMode::LastHit);
+        }
+        v.extend(self.packets.map(TraceMode::Packets));
+        v
+    }
+
     /// The suite configuration for these arguments.
     pub fn config(
         &self,
@@ -166,6 +195,7 @@ impl SuiteArgs {
             brute_timing_budget: if q { 20_000_000 } else { 200_000_000 },
             timed,
             shard: self.shard,
+            modes: self.modes(),
         })
     }
 }

@@ -7,7 +7,7 @@ use crate::geometry::{Aabb, Ray, TriangleKernelKind};
 use crate::harness::sweep::{SweepPoint, SweepRow, SweepSetup, run_sweep};
 use crate::index::OctreeParams;
 use crate::index::grid::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution, resolution};
-use crate::rays::{RaySetKind, incoherent_rays, primary_rays};
+use crate::rays::{RaySetKind, ray_set};
 use crate::report::sweep_report::{SweepPlot, write_sweep};
 use crate::scene::{Scene, load_scene};
 use anyhow::Context;
@@ -112,10 +112,7 @@ struct Prepared {
 fn prepare(c: &CommonSweepArgs, index: &str) -> anyhow::Result<Prepared> {
     let scene = load_scene(&c.scene).with_context(|| format!("loading scene '{}'", c.scene))?;
     let b = scene.ray_set_bounds();
-    let rays = match c.rays {
-        RaySetKind::Primary => primary_rays(&b, c.size, c.size)?,
-        RaySetKind::Incoherent => incoherent_rays(&b, c.count as usize, 42),
-    };
+    let rays = ray_set(c.rays, &b, c.size, c.count as usize, None)?;
     let safe: String = scene
         .name
         .chars()

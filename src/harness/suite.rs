@@ -15,7 +15,7 @@ pub use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
 use super::suite_set::{SetRun, run_set};
 use super::workload::{self, RaySet, SetSizes};
 use crate::geometry::TriangleKernelKind;
-use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, is_peer};
+use crate::index::{BuildError, IndexSpec, TraceIndex, TraceMode, build_index, is_peer};
 use crate::scene::{Scene, SceneGeometry};
 use indicatif::ProgressBar;
 use serde::Serialize;
@@ -40,6 +40,9 @@ pub struct SuiteConfig {
     pub timed: bool,
     /// The share of the scene x index work this run does ([`Shard::WHOLE`] for all of it).
     pub shard: Shard,
+    /// Modes each index is also traced in besides ray by ray (`run --last-hit`,
+    /// `--packets N`): verified against the ray-by-ray hits, with rows of their own.
+    pub modes: Vec<TraceMode>,
 }
 
 fn specs_as_strings<S: serde::Serializer>(v: &[IndexSpec], s: S) -> Result<S::Ok, S::Error> {
@@ -196,7 +199,18 @@ fn run_scene(
         let rays = match set {
             RaySet::Primary => primary.clone(),
             RaySet::Incoherent => workload::incoherent(scene, &cfg.sizes),
-            s => workload::secondary(s, scene, &cfg.sizes, &primary, &primary_hits),
+            s if s.is_secondary() => {
+                workload::secondary(s, scene, &cfg.sizes, &primary, &primary_hits)
+            }
+            s => match workload::camera_model_set(scene, &cfg.sizes, camera_kind(s)) {
+                Ok(r) => r,
+                Err(e) => {
+                    let what = format!("ray set {}", s.name());
+                    note(res, scene, what, format!("camera: {e}"));
+                    progress.inc(built.len() as u64);
+                    continue;
+                }
+            },
         };
         if rays.is_empty() {
             note(
@@ -227,4 +241,10 @@ pub fn check_specs(specs: &[IndexSpec], kernel: TriangleKernelKind) -> Result<()
         build_index(s, &probe.geometry(), kernel)?;
     }
     Ok(())
+}
+
+/// The camera model of a set that is neither the primary, the incoherent nor a secondary set.
+fn camera_kind(set: RaySet) -> crate::camera::ModelKind {
+    set.camera_model()
+        .expect("every set but primary, incoherent and the secondary ones is a camera set")
 }

@@ -4,12 +4,12 @@
 use super::peer_check::{PeerCounts, classify};
 use super::suite::{Pools, SuiteConfig, note};
 use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
-use super::timing::{BatchHits, Query, Timing, counting_pass, timed_pass};
+use super::timing::{BatchHits, Query, Timing, counting_pass, counting_pass_in, timed_pass_in};
 use super::verify::{Mismatch, compare_closest};
 use super::workload::RaySet;
 use crate::geometry::triangle::exact::fallback_total;
 use crate::geometry::{Ray, TriangleKernelKind};
-use crate::index::{Counters, TraceIndex, is_peer};
+use crate::index::{Counters, TraceIndex, TraceMode, is_peer};
 use crate::scene::Scene;
 use indicatif::ProgressBar;
 
@@ -170,7 +170,7 @@ fn brute_over_budget(
 /// untimed entry at the largest count when the run does not time.
 fn timed_passes(
     run: &SetRun,
-    index: &dyn TraceIndex,
+    (index, mode): (&dyn TraceIndex, TraceMode),
     counted: &BatchHits,
     cfg: &SuiteConfig,
     pools: &Pools,
@@ -185,7 +185,7 @@ fn timed_passes(
         .iter()
         .map(|(threads, pool)| {
             let (timing, timed_hits) =
-                pool.install(|| timed_pass(index, run.set.query(), run.rays, cfg.repeats));
+                pool.install(|| timed_pass_in(index, run.set.query(), mode, run.rays, cfg.repeats));
             t.record(
                 "counting-pass",
                 compare_closest(run.rays, counted, &timed_hits),
@@ -196,7 +196,8 @@ fn timed_passes(
         .collect()
 }
 
-/// Runs every built index on one ray set and appends its rows to `res`.
+/// Runs every built index on one ray set and appends its rows to `res`: traced ray by ray,
+/// then in every extra mode of `cfg.modes` that applies to the set.
 pub(super) fn run_set(
     mut run: SetRun,
     built: &[Box<dyn TraceIndex>],
@@ -205,7 +206,6 @@ pub(super) fn run_set(
     progress: &ProgressBar,
     res: &mut SuiteResult,
 ) {
-    let query = run.set.query();
     for index in built {
         let index = index.as_ref();
         progress.set_message(format!(
@@ -218,34 +218,71 @@ pub(super) fn run_set(
             progress.inc(1);
             continue;
         }
-        let fallbacks_before = fallback_total();
-        let (counters, hits) = pools
-            .all()
-            .install(|| counting_pass(index, query, run.rays));
-        let exact_fallbacks = fallback_total() - fallbacks_before;
-        let mut tally = Tally {
-            scene: &run.scene.name,
-            index: index.name(),
-            set: run.set,
-            query,
-            count: 0,
-            peer: is_peer(index.name()).then(PeerCounts::default),
-        };
-        run.verify(index, &hits, &mut tally, res);
-        let timings = timed_passes(&run, index, &hits, cfg, pools, &mut tally, res);
-        let counts = SetCounts {
-            total: counters.iter().copied().sum(),
-            hits: hits.iter().flatten().count(),
-            mismatches: tally.count,
-            exact_fallbacks,
-            peer: tally.peer,
-        };
-        for (threads, timing) in timings {
-            res.rows
-                .push(result_row(&run, index, &counts, threads, timing, cfg));
+        let hits = run_mode(&mut run, index, TraceMode::Single, None, cfg, pools, res);
+        let set = run.set;
+        for &mode in cfg.modes.iter().filter(|m| applies(**m, set)) {
+            run_mode(&mut run, index, mode, Some(&hits), cfg, pools, res);
         }
         progress.inc(1);
     }
+}
+
+/// Whether the suite traces `set` in `mode`: packets only on the coherent sets.
+fn applies(mode: TraceMode, set: RaySet) -> bool {
+    match mode {
+        TraceMode::Packets(_) => set.is_coherent(),
+        _ => true,
+    }
+}
+
+/// One index on one set in one mode: the counting pass, its verification (ray by ray: against
+/// brute force and the first index; other modes: against the ray-by-ray hits `single`), the
+/// timed passes and the rows (labelled `index+mode` for the other modes). Returns the hits.
+fn run_mode(
+    run: &mut SetRun,
+    index: &dyn TraceIndex,
+    mode: TraceMode,
+    single: Option<&BatchHits>,
+    cfg: &SuiteConfig,
+    pools: &Pools,
+    res: &mut SuiteResult,
+) -> BatchHits {
+    let query = run.set.query();
+    let fallbacks_before = fallback_total();
+    let (counters, hits) = pools
+        .all()
+        .install(|| counting_pass_in(index, query, mode, run.rays));
+    let exact_fallbacks = fallback_total() - fallbacks_before;
+    let mut tally = Tally {
+        scene: &run.scene.name,
+        index: index.name(),
+        set: run.set,
+        query,
+        count: 0,
+        peer: is_peer(index.name()).then(PeerCounts::default),
+    };
+    match single {
+        None => run.verify(index, &hits, &mut tally, res),
+        Some(single) => tally.record("single", compare_closest(run.rays, single, &hits), res),
+    }
+    let timings = timed_passes(run, (index, mode), &hits, cfg, pools, &mut tally, res);
+    let counts = SetCounts {
+        total: counters.iter().copied().sum(),
+        hits: hits.iter().flatten().count(),
+        mismatches: tally.count,
+        exact_fallbacks,
+        peer: tally.peer,
+    };
+    let label = match mode {
+        TraceMode::Single => index.name().to_owned(),
+        m => format!("{}+{}", index.name(), m.label()),
+    };
+    for (threads, timing) in timings {
+        let mut row = result_row(run, index, &counts, threads, timing, cfg);
+        row.index.clone_from(&label);
+        res.rows.push(row);
+    }
+    hits
 }
 
 /// What the counting pass and verification found for one index on one set.

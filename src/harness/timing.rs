@@ -1,7 +1,7 @@
 //! Timed and counting passes over a batch of rays. Counting never runs inside a timed pass.
 
 use crate::geometry::{Hit, Ray};
-use crate::index::{Counters, TraceIndex};
+use crate::index::{Counters, TraceIndex, TraceMode};
 use std::time::{Duration, Instant};
 
 /// What a batch asks: the closest hit, or only whether anything is hit (occlusion).
@@ -71,15 +71,28 @@ pub fn timed_pass(
     rays: &[Ray],
     repeats: usize,
 ) -> (Timing, BatchHits) {
+    timed_pass_in(index, query, TraceMode::Single, rays, repeats)
+}
+
+/// [`timed_pass`] with the batch traced in `mode` (last hit first, packets).
+pub fn timed_pass_in(
+    index: &dyn TraceIndex,
+    query: Query,
+    mode: TraceMode,
+    rays: &[Ray],
+    repeats: usize,
+) -> (Timing, BatchHits) {
     match query {
         Query::Closest => {
             let mut out = vec![None; rays.len()];
-            let t = time_repeated(repeats, || index.closest_hits(rays, &mut out));
+            let t = time_repeated(repeats, || {
+                index.closest_hits_in(mode, rays, &mut out, None)
+            });
             (t, out)
         }
         Query::Any => {
             let mut out = vec![false; rays.len()];
-            let t = time_repeated(repeats, || index.any_hits(rays, &mut out));
+            let t = time_repeated(repeats, || index.any_hits_in(mode, rays, &mut out, None));
             (t, occluded(&out))
         }
     }
@@ -91,16 +104,26 @@ pub fn counting_pass(
     query: Query,
     rays: &[Ray],
 ) -> (Vec<Counters>, BatchHits) {
+    counting_pass_in(index, query, TraceMode::Single, rays)
+}
+
+/// [`counting_pass`] with the batch traced in `mode`.
+pub fn counting_pass_in(
+    index: &dyn TraceIndex,
+    query: Query,
+    mode: TraceMode,
+    rays: &[Ray],
+) -> (Vec<Counters>, BatchHits) {
     let mut counters = vec![Counters::default(); rays.len()];
     match query {
         Query::Closest => {
             let mut out = vec![None; rays.len()];
-            index.closest_hits_counted(rays, &mut out, &mut counters);
+            index.closest_hits_in(mode, rays, &mut out, Some(&mut counters));
             (counters, out)
         }
         Query::Any => {
             let mut out = vec![false; rays.len()];
-            index.any_hits_counted(rays, &mut out, &mut counters);
+            index.any_hits_in(mode, rays, &mut out, Some(&mut counters));
             (counters, occluded(&out))
         }
     }

@@ -1,4 +1,5 @@
-//! The suite's ray sets: the protocol's **primary** and **incoherent** sets, and the secondary
+//! The suite's ray sets: the protocol's **primary** and **incoherent** sets, the camera-model
+//! sets **dof**, **motion** and **lens** (`rays::camera_model_rays`), and the secondary
 //! rays a renderer really traces from the primary hits (the methodology of Aila & Laine 2009):
 //! **shadow** rays toward each point light (any hit), one cosine-distributed **diffuse** bounce
 //! (closest hit), and short **ao** rays (ambient occlusion, any hit).
@@ -9,10 +10,10 @@
 //! the same scene and sizes give the same rays, bit for bit.
 
 use super::timing::Query;
-use crate::camera::CameraError;
+use crate::camera::{CameraError, ModelKind};
 use crate::geometry::{Hit, Ray};
 use crate::rays::spawn::{offset_origin_scaled, spawn_scale};
-use crate::rays::{SplitMix64, incoherent_rays, primary_rays};
+use crate::rays::{CAMERA_SET_SEED, SplitMix64, camera_model_rays, incoherent_rays, primary_rays};
 use crate::scene::Scene;
 use glam::Vec3A;
 use serde::Serialize;
@@ -27,15 +28,21 @@ pub enum RaySet {
     Diffuse,
     Ao,
     Incoherent,
+    Dof,
+    Motion,
+    Lens,
 }
 
 impl RaySet {
-    pub const ALL: [RaySet; 5] = [
+    pub const ALL: [RaySet; 8] = [
         RaySet::Primary,
         RaySet::Shadow,
         RaySet::Diffuse,
         RaySet::Ao,
         RaySet::Incoherent,
+        RaySet::Dof,
+        RaySet::Motion,
+        RaySet::Lens,
     ];
 
     pub fn name(self) -> &'static str {
@@ -45,6 +52,9 @@ impl RaySet {
             RaySet::Diffuse => "diffuse",
             RaySet::Ao => "ao",
             RaySet::Incoherent => "incoherent",
+            RaySet::Dof => "dof",
+            RaySet::Motion => "motion",
+            RaySet::Lens => "lens",
         }
     }
 
@@ -53,6 +63,22 @@ impl RaySet {
         match self {
             RaySet::Shadow | RaySet::Ao => Query::Any,
             _ => Query::Closest,
+        }
+    }
+
+    /// `true` for the sets whose neighbouring rays come from neighbouring pixels (traced as
+    /// packets by `run --packets`): the camera sets and the shadow rays of primary hits.
+    pub fn is_coherent(self) -> bool {
+        !matches!(self, RaySet::Diffuse | RaySet::Ao | RaySet::Incoherent)
+    }
+
+    /// The camera model of a camera-model set.
+    pub fn camera_model(self) -> Option<ModelKind> {
+        match self {
+            RaySet::Dof => Some(ModelKind::Dof),
+            RaySet::Motion => Some(ModelKind::Motion),
+            RaySet::Lens => Some(ModelKind::Lens),
+            _ => None,
         }
     }
 
@@ -80,6 +106,20 @@ pub fn primary(scene: &Scene, sizes: &SetSizes) -> Result<Vec<Ray>, CameraError>
         &scene.ray_set_bounds(),
         sizes.primary_side,
         sizes.primary_side,
+    )
+}
+
+/// The camera-model set of `kind` at the primary set's size (seed [`CAMERA_SET_SEED`]).
+pub fn camera_model_set(
+    scene: &Scene,
+    sizes: &SetSizes,
+    kind: ModelKind,
+) -> Result<Vec<Ray>, CameraError> {
+    camera_model_rays(
+        &scene.ray_set_bounds(),
+        sizes.primary_side,
+        kind,
+        CAMERA_SET_SEED,
     )
 }
 
@@ -169,7 +209,7 @@ pub fn secondary(
                     out.push(r);
                 }
             }
-            RaySet::Primary | RaySet::Incoherent => unreachable!("not a secondary set"),
+            _ => unreachable!("not a secondary set"),
         }
     }
     out

@@ -4,6 +4,7 @@
 //! ids, and answers closest-hit and any-hit queries by calling the geometry's shared kernel.
 //! Traversal is generic over [`Stats`]: [`NoStats`] for timed runs, [`Counters`] for counting.
 
+pub mod batch;
 mod brute;
 pub mod bsp;
 pub mod bvh;
@@ -12,6 +13,7 @@ pub mod embree_peer;
 pub mod grid;
 pub mod grid2;
 pub mod kdtree;
+pub mod last_hit;
 pub mod mailbox;
 pub mod near_far;
 pub mod obvhs_peer;
@@ -25,6 +27,7 @@ pub mod tinybvh_peer;
 mod triangle_peer;
 pub mod wbvh;
 
+pub use batch::{MAX_PACKET, TraceMode};
 pub use brute::BruteForce;
 pub use bsp::Bsp;
 pub use bvh::{Bvh, BvhParams};
@@ -110,4 +113,33 @@ pub trait Index: Sized + Send + Sync + 'static {
 
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;
+
+    /// Closest hits of a packet of neighbouring rays (at most [`MAX_PACKET`]; `out` and `stats`
+    /// as long as `rays`). By default ray by ray; an index with packet traversal overrides it.
+    #[inline]
+    fn closest_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
+            *o = self.closest_hit(geom, r, s);
+        }
+    }
+
+    /// Any-hit results of a packet, as [`Index::closest_hits_packet`].
+    #[inline]
+    fn any_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
+            *o = self.any_hit(geom, r, s);
+        }
+    }
 }

@@ -2,9 +2,10 @@
 //! [`TraceIndex`] that the harness, the CLI and reports use. The virtual call happens once per
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
+use super::batch::{any_chunk, closest_chunk};
 use super::{
     BruteForce, Bsp, BuildError, Bvh, Counters, Index, IndexInfo, KdTree, NeighborOctree, NoStats,
-    ObvhsBvh2, ObvhsCwBvh, TopDownOctree,
+    ObvhsBvh2, ObvhsCwBvh, TopDownOctree, TraceMode,
 };
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
@@ -271,14 +272,39 @@ pub trait TraceIndex: Send + Sync {
     fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit>;
     fn any_hit(&self, ray: &Ray) -> bool;
     fn any_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> bool;
+    /// Closest hits of a batch (`out.len() == rays.len()`) traced in `mode`, with per-ray
+    /// counters (reset first) when `counters` is given.
+    fn closest_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        counters: Option<&mut [Counters]>,
+    );
+    /// Any-hit results of a batch traced in `mode`, as [`TraceIndex::closest_hits_in`].
+    fn any_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [bool],
+        counters: Option<&mut [Counters]>,
+    );
     /// Closest hits of a batch (`out.len() == rays.len()`), no counting.
-    fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>]);
+    fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        self.closest_hits_in(TraceMode::Single, rays, out, None);
+    }
     /// Any-hit results of a batch, no counting.
-    fn any_hits(&self, rays: &[Ray], out: &mut [bool]);
+    fn any_hits(&self, rays: &[Ray], out: &mut [bool]) {
+        self.any_hits_in(TraceMode::Single, rays, out, None);
+    }
     /// Closest hits with per-ray counters.
-    fn closest_hits_counted(&self, rays: &[Ray], out: &mut [Option<Hit>], c: &mut [Counters]);
+    fn closest_hits_counted(&self, rays: &[Ray], out: &mut [Option<Hit>], c: &mut [Counters]) {
+        self.closest_hits_in(TraceMode::Single, rays, out, Some(c));
+    }
     /// Any-hit results with per-ray counters.
-    fn any_hits_counted(&self, rays: &[Ray], out: &mut [bool], c: &mut [Counters]);
+    fn any_hits_counted(&self, rays: &[Ray], out: &mut [bool], c: &mut [Counters]) {
+        self.any_hits_in(TraceMode::Single, rays, out, Some(c));
+    }
 }
 
 impl<I: Index, G: Geometry> TraceIndex for BoundIndex<I, G> {
@@ -303,49 +329,70 @@ impl<I: Index, G: Geometry> TraceIndex for BoundIndex<I, G> {
     fn any_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> bool {
         self.index.any_hit(&self.geom, ray, counters)
     }
-    fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+    fn closest_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        counters: Option<&mut [Counters]>,
+    ) {
         assert_eq!(rays.len(), out.len(), "one output per ray");
-        out.par_chunks_mut(CHUNK)
-            .zip(rays.par_chunks(CHUNK))
-            .for_each(|(out, rays)| {
-                for (o, r) in out.iter_mut().zip(rays) {
-                    *o = self.index.closest_hit(&self.geom, r, &mut NoStats);
-                }
-            });
+        let chunk = |(rays, out): (&[Ray], &mut [Option<Hit>]), c: Option<&mut [Counters]>| match c
+        {
+            Some(c) => {
+                c.fill(Counters::default());
+                closest_chunk(&self.index, &self.geom, mode, rays, out, c)
+            }
+            None => {
+                let mut none = [NoStats; CHUNK];
+                let none = &mut none[..rays.len()];
+                closest_chunk(&self.index, &self.geom, mode, rays, out, none)
+            }
+        };
+        let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
+        match counters {
+            Some(c) => {
+                assert_eq!(rays.len(), c.len(), "one counter per ray");
+                work.zip(c.par_chunks_mut(CHUNK))
+                    .for_each(|(w, c)| chunk(w, Some(c)));
+            }
+            None => work.for_each(|w| chunk(w, None)),
+        }
     }
-    fn any_hits(&self, rays: &[Ray], out: &mut [bool]) {
+    fn any_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [bool],
+        counters: Option<&mut [Counters]>,
+    ) {
         assert_eq!(rays.len(), out.len(), "one output per ray");
-        out.par_chunks_mut(CHUNK)
-            .zip(rays.par_chunks(CHUNK))
-            .for_each(|(out, rays)| {
-                for (o, r) in out.iter_mut().zip(rays) {
-                    *o = self.index.any_hit(&self.geom, r, &mut NoStats);
-                }
-            });
-    }
-    fn closest_hits_counted(&self, rays: &[Ray], out: &mut [Option<Hit>], c: &mut [Counters]) {
-        assert!(rays.len() == out.len() && rays.len() == c.len());
-        out.par_chunks_mut(CHUNK)
-            .zip(c.par_chunks_mut(CHUNK))
-            .zip(rays.par_chunks(CHUNK))
-            .for_each(|((out, c), rays)| {
-                for ((o, c), r) in out.iter_mut().zip(c.iter_mut()).zip(rays) {
-                    *c = Counters::default();
-                    *o = self.index.closest_hit(&self.geom, r, c);
-                }
-            });
-    }
-    fn any_hits_counted(&self, rays: &[Ray], out: &mut [bool], c: &mut [Counters]) {
-        assert!(rays.len() == out.len() && rays.len() == c.len());
-        out.par_chunks_mut(CHUNK)
-            .zip(c.par_chunks_mut(CHUNK))
-            .zip(rays.par_chunks(CHUNK))
-            .for_each(|((out, c), rays)| {
-                for ((o, c), r) in out.iter_mut().zip(c.iter_mut()).zip(rays) {
-                    *c = Counters::default();
-                    *o = self.index.any_hit(&self.geom, r, c);
-                }
-            });
+        let chunk = |(rays, out): (&[Ray], &mut [bool]), c: Option<&mut [Counters]>| match c {
+            Some(c) => {
+                c.fill(Counters::default());
+                any_chunk(&self.index, &self.geom, mode, rays, out, c)
+            }
+            None => {
+                let mut none = [NoStats; CHUNK];
+                any_chunk(
+                    &self.index,
+                    &self.geom,
+                    mode,
+                    rays,
+                    out,
+                    &mut none[..rays.len()],
+                )
+            }
+        };
+        let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
+        match counters {
+            Some(c) => {
+                assert_eq!(rays.len(), c.len(), "one counter per ray");
+                work.zip(c.par_chunks_mut(CHUNK))
+                    .for_each(|(w, c)| chunk(w, Some(c)));
+            }
+            None => work.for_each(|w| chunk(w, None)),
+        }
     }
 }
 

@@ -1,8 +1,9 @@
 //! The protocol's standard ray sets: "primary" (pinhole camera) and "incoherent" (uniform
-//! origins in the bounds, uniform directions), computed in `f64` as the protocol prescribes.
+//! origins in the bounds, uniform directions), computed in `f64` as the protocol prescribes, and
+//! the names of the camera-model sets (`camera_sets`).
 
-use super::SplitMix64;
-use crate::camera::{Camera, CameraError};
+use super::{CAMERA_SET_SEED, SplitMix64, camera_model_rays};
+use crate::camera::{Camera, CameraError, ModelKind};
 use crate::geometry::{Aabb, Ray};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -13,6 +14,12 @@ use std::f64::consts::PI;
 pub enum RaySetKind {
     Primary,
     Incoherent,
+    /// Thin-lens camera (depth of field), see `camera_sets`.
+    Dof,
+    /// Eye moving during the shutter (camera motion blur).
+    Motion,
+    /// Brown-Conrady barrel distortion.
+    Lens,
 }
 
 impl RaySetKind {
@@ -20,8 +27,39 @@ impl RaySetKind {
         match self {
             RaySetKind::Primary => "primary",
             RaySetKind::Incoherent => "incoherent",
+            RaySetKind::Dof => "dof",
+            RaySetKind::Motion => "motion",
+            RaySetKind::Lens => "lens",
         }
     }
+
+    /// The camera model of a camera-model set (`None` for the protocol's sets).
+    pub fn camera_model(self) -> Option<ModelKind> {
+        match self {
+            RaySetKind::Dof => Some(ModelKind::Dof),
+            RaySetKind::Motion => Some(ModelKind::Motion),
+            RaySetKind::Lens => Some(ModelKind::Lens),
+            RaySetKind::Primary | RaySetKind::Incoherent => None,
+        }
+    }
+}
+
+/// The set `kind` for bounds `b`: `side x side` camera rays (primary and camera-model sets) or
+/// `count` incoherent rays; `seed` overrides the default seed (42 for incoherent, 19
+/// ([`CAMERA_SET_SEED`]) for dof and motion; primary and lens draw nothing).
+pub fn ray_set(
+    kind: RaySetKind,
+    b: &Aabb,
+    side: u32,
+    count: usize,
+    seed: Option<u64>,
+) -> Result<Vec<Ray>, CameraError> {
+    Ok(match (kind, kind.camera_model()) {
+        (RaySetKind::Primary, _) => primary_rays(b, side, side)?,
+        (RaySetKind::Incoherent, _) => incoherent_rays(b, count, seed.unwrap_or(42)),
+        (_, Some(model)) => camera_model_rays(b, side, model, seed.unwrap_or(CAMERA_SET_SEED))?,
+        (_, None) => unreachable!("every other set is a camera-model set"),
+    })
 }
 
 /// `width x height` camera rays of the protocol camera for bounds `b`, row-major.

@@ -20,6 +20,7 @@ mod font;
 mod heatmap;
 mod image;
 mod pictures;
+mod sampling;
 mod shade;
 mod view;
 
@@ -28,7 +29,8 @@ pub use heatmap::{
 };
 pub use image::Image;
 pub use pictures::{Picture, write_scene_pictures};
-pub use shade::{SHADOW_T_MAX, render_shaded};
+pub use sampling::{Filter, MAX_SPP, Sampling};
+pub use shade::{SHADOW_T_MAX, render_shaded, render_shaded_with};
 pub use view::{pixel_ray, view_camera};
 
 use crate::camera::CameraError;
@@ -92,6 +94,8 @@ pub enum RenderError {
     Camera(CameraError),
     #[error("camera ray: {0}")]
     Ray(RayError),
+    #[error("{0} samples per pixel is invalid: use 1 to {MAX_SPP}")]
+    Samples(u32),
     #[error("cannot write {path}: {message}")]
     Write { path: PathBuf, message: String },
 }

@@ -1,8 +1,10 @@
 //! Phong shading of the closest hit with shadows by occlusion (any-hit) rays: point lights give
 //! hard shadows, rectangular area lights soft ones from a fixed stratified grid of samples.
 
+use super::sampling::{MAX_SPP, Sampling};
 use super::view::{pixel_ray, view_camera};
 use super::{Image, RenderError, RenderOptions};
+use crate::camera::CameraModel;
 use crate::geometry::{Hit, Ray};
 use crate::index::TraceIndex;
 use crate::rays::SplitMix64;
@@ -32,9 +34,26 @@ pub fn render_shaded(
     index: &dyn TraceIndex,
     opts: &RenderOptions,
 ) -> Result<Image, RenderError> {
+    render_shaded_with(scene, index, opts, &Sampling::default())
+}
+
+/// [`render_shaded`] with `sampling.spp` stratified camera rays per pixel through camera model
+/// `sampling.camera` (defaults relative to the scene, [`CameraModel::for_scene`]), averaged in
+/// linear RGB with the filter's weights. Sample `k` of pixel `p` seeds its area-light samples
+/// with `p * spp + k`, so one sample per pixel through the pinhole is [`render_shaded`].
+pub fn render_shaded_with(
+    scene: &Scene,
+    index: &dyn TraceIndex,
+    opts: &RenderOptions,
+    sampling: &Sampling,
+) -> Result<Image, RenderError> {
+    if !(1..=MAX_SPP).contains(&sampling.spp) {
+        return Err(RenderError::Samples(sampling.spp));
+    }
     let cam = view_camera(scene, opts)?;
     // Fail early, with the error, if the camera cannot make rays (it can for no valid camera).
     pixel_ray(&cam, 0, 0)?;
+    let model = CameraModel::for_scene(sampling.camera, &cam, &scene.ray_set_bounds())?;
     let lights = if scene.lights.is_empty() && scene.area_lights.is_empty() {
         scene.lights_or_default()
     } else {
@@ -47,19 +66,27 @@ pub fn render_shaded(
         spawn_scale: spawn_scale(&scene.bounds()),
     };
     let width = opts.width;
+    let spp = sampling.spp;
     let mut img = Image::new(opts.width, opts.height);
     let rows: Vec<&mut [u8]> = img.rows_mut().collect();
     rows.into_par_iter().enumerate().for_each(|(j, row)| {
         for (i, px) in row.chunks_exact_mut(3).enumerate() {
             let (i, j) = (i as u32, j as u32);
-            let colour = match pixel_ray(&cam, i, j) {
-                Ok(ray) => match index.closest_hit(&ray) {
-                    Some(hit) => shader.shade(&ray, hit, j as u64 * width as u64 + i as u64),
-                    None => BACKGROUND,
-                },
-                Err(_) => BACKGROUND,
-            };
-            px.copy_from_slice(&to_srgb8(colour));
+            let pixel = j as u64 * width as u64 + i as u64;
+            let (mut sum, mut weights) = (Vec3::ZERO, 0.0);
+            for k in 0..spp {
+                let (s, w) = sampling.sample(i, j, pixel, k);
+                let colour = match model.ray(&cam, &s) {
+                    Ok(ray) => match index.closest_hit(&ray) {
+                        Some(hit) => shader.shade(&ray, hit, pixel * spp as u64 + k as u64),
+                        None => BACKGROUND,
+                    },
+                    Err(_) => BACKGROUND,
+                };
+                sum += colour * w;
+                weights += w;
+            }
+            px.copy_from_slice(&to_srgb8(sum / weights));
         }
     });
     Ok(img)

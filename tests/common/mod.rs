@@ -132,3 +132,54 @@ pub fn bunny_protocol_sample(bunny: &Scene) -> Vec<Ray> {
     rays.extend(incoherent_rays(&b, 2000, 42));
     rays
 }
+
+/// Asserts that every index of ours traced in `mode` returns brute force's closest hits and
+/// any-hit answers on `rays` (the kernel `Exact`), on the camera sets and protocol rays of
+/// small agreement scenes, plus the same rays cut to a finite `t_max` (occlusion queries).
+pub fn assert_mode_agrees(mode: accelbench::index::TraceMode) {
+    use accelbench::camera::ModelKind;
+    use accelbench::index::{build_index, index_names, is_peer};
+    use accelbench::rays::{CAMERA_SET_SEED, camera_model_rays};
+    let mut scenes = agreement_scenes();
+    scenes.truncate(7);
+    if let Some(b) = bunny() {
+        scenes.push(b);
+    }
+    for scene in scenes {
+        let geom = scene.geometry();
+        let b = scene.ray_set_bounds();
+        let mut rays = agreement_rays(&scene, 400);
+        for kind in [ModelKind::Dof, ModelKind::Motion, ModelKind::Lens] {
+            rays.extend(camera_model_rays(&b, 20, kind, CAMERA_SET_SEED).unwrap());
+        }
+        let cut = b.extent().length() * 0.9;
+        let short: Vec<Ray> = rays
+            .iter()
+            .filter_map(|r| Ray::new(r.origin.into(), r.dir.into(), r.t_min, cut).ok())
+            .collect();
+        rays.extend(short);
+        let kernel = TriangleKernelKind::Exact;
+        let brute =
+            accelbench::index::build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
+        let mut expected = vec![None; rays.len()];
+        brute.closest_hits(&rays, &mut expected);
+        for name in index_names().into_iter().filter(|n| !is_peer(n)) {
+            let index = build_index(&IndexSpec::named(name), &geom, kernel).unwrap();
+            let mut got = vec![None; rays.len()];
+            index.closest_hits_in(mode, &rays, &mut got, None);
+            let what = format!("{name} in {mode:?}");
+            let m = accelbench::harness::verify::compare_closest(&rays, &expected, &got);
+            assert_no_mismatch(&what, &scene, rays.len(), &m);
+            let mut counters = vec![accelbench::index::Counters::default(); rays.len()];
+            index.closest_hits_in(mode, &rays, &mut got, Some(&mut counters));
+            let m = accelbench::harness::verify::compare_closest(&rays, &expected, &got);
+            assert_no_mismatch(&format!("{what}, counted"), &scene, rays.len(), &m);
+            let mut any = vec![false; rays.len()];
+            index.any_hits_in(mode, &rays, &mut any, None);
+            let wrong = (0..rays.len())
+                .filter(|&i| any[i] != expected[i].is_some())
+                .count();
+            assert_eq!(wrong, 0, "{what} any-hit on {}: {wrong} wrong", scene.name);
+        }
+    }
+}

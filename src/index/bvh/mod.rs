@@ -13,6 +13,7 @@ mod binned;
 mod build;
 pub(crate) mod leaves;
 pub(crate) mod node;
+mod packet;
 pub mod params;
 mod prim_ref;
 pub(crate) mod slab;
@@ -98,6 +99,26 @@ impl Index for Bvh {
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
         walk::any_hit(&self.tree(), geom, ray, stats)
+    }
+
+    fn closest_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        packet::closest_hits(self, geom, rays, out, stats)
+    }
+
+    fn any_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        packet::any_hits(self, geom, rays, out, stats)
     }
 
     fn info(&self) -> IndexInfo {

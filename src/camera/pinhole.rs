@@ -32,6 +32,12 @@ pub enum CameraError {
     DegenerateBasis,
     #[error("camera parameters must be finite")]
     NonFinite,
+    #[error(
+        "the thin lens focuses on the scene's centre, but the centre is behind the camera (distance {0} along the view direction); point the camera at the scene"
+    )]
+    FocusBehind(f64),
+    #[error("lens distortion k1 = {k1}, k2 = {k2} is invalid: {reason}")]
+    Distortion { k1: f64, k2: f64, reason: String },
 }
 
 /// `a / |a|` as the protocol writes it (a division, not a multiplication by a reciprocal).
@@ -98,6 +104,26 @@ impl Camera {
         let n = normalize_protocol(DVec3::new(0.3, 0.35, 1.0));
         let eye = c + ((n * d) * 1.1);
         Camera::look_at(eye, c, DVec3::Y, 45.0, width, height)
+    }
+
+    /// Screen coordinates `(u * tan(fov/2) * aspect, v * tan(fov/2))` of the film point `(x, y)`
+    /// in pixel units (`(0, 0)` the top-left corner of the image, `(width, height)` the
+    /// bottom-right; a pixel centre is `(i + 0.5, j + 0.5)`). `aspect = width / height` widens the
+    /// horizontal field of view; for a square image this is the protocol's `(u * t, v * t)`
+    /// bit for bit (a multiplication by 1 is exact).
+    pub fn screen(&self, x: f64, y: f64) -> (f64, f64) {
+        let aspect = self.width as f64 / self.height as f64;
+        let u = (x / self.width as f64) * 2.0 - 1.0;
+        let v = 1.0 - (y / self.height as f64) * 2.0;
+        let t = self.tan_half_fov;
+        ((u * t) * aspect, v * t)
+    }
+
+    /// The unnormalized direction `forward + sx * right + sy * up` through screen point
+    /// `(sx, sy)` (see [`Camera::screen`]); its `forward` component is 1, so `eye + d * f` lies on
+    /// the plane at distance `f` in front of the eye.
+    pub fn through_screen(&self, sx: f64, sy: f64) -> DVec3 {
+        self.forward + sx * self.right + sy * self.up
     }
 
     /// Direction through the centre of pixel column `i`, row `j` (row 0 at the top), in `f64`.

@@ -1,0 +1,140 @@
+//! "Check last hit first" (screen-space coherence): a worker tracing rays in image order keeps
+//! the primitive its previous ray hit and tests it before traversing.
+//!
+//! - Closest hit: when the kept primitive is hit at `t_last`, the index is asked for the
+//!   closest hit over `[t_min, t_last]` only, so it culls everything beyond at once. This keeps
+//!   brute force's answer bit for bit: brute force's hit `(t*, p*)` has `t* <= t_last`, so it
+//!   lies in the narrowed interval (closed, so the kept primitive and every primitive tied with
+//!   it at `t_last` are still found, and the lowest id among ties wins as usual). One subtlety:
+//!   a kernel rejects a raw `t` beyond the *ray's* `t_max` before [`Geometry::intersect`] clamps
+//!   it into the primitive's box, so a primitive whose raw `t` lies just beyond `t_last` but
+//!   whose clamped `t` does not would be lost by narrowing the ray itself. The narrowed query
+//!   therefore runs over [`KernelRange`], which hands the kernel the original `t_max` and only
+//!   accepts `t <= t_last`: every primitive gets exactly the `t` brute force computes.
+//! - Any hit (shadow rays): a hit on the kept primitive answers "occluded" at once (the shadow
+//!   cache of Haines and Greenberg 1986); otherwise the index is asked as usual, over
+//!   [`KernelRange`] too, which notes the primitive whose test succeeded last: the occluder the
+//!   any-hit query stopped at, kept for the next ray.
+
+use super::{Index, Stats};
+use crate::geometry::{Aabb, Hit, Ray};
+use crate::scene::Geometry;
+use glam::Vec3A;
+use std::sync::atomic::AtomicU32;
+use std::sync::atomic::Ordering::Relaxed;
+
+/// A geometry whose kernel sees `kernel_t_max` as the ray's `t_max` whatever the ray passed in
+/// says (see the module doc), and which notes the last primitive it reported a hit on;
+/// everything else is the inner geometry's. One per worker (the note is a relaxed atomic only
+/// because geometries must be `Sync`; nothing else reads it).
+pub struct KernelRange<G> {
+    inner: G,
+    kernel_t_max: f32,
+    found: AtomicU32,
+}
+
+impl<G: Geometry> KernelRange<G> {
+    /// Wraps a geometry (one clone per batch of rays, not per ray).
+    pub fn new(inner: G) -> KernelRange<G> {
+        KernelRange {
+            inner,
+            kernel_t_max: f32::INFINITY,
+            found: AtomicU32::new(u32::MAX),
+        }
+    }
+}
+
+impl<G: Clone> Clone for KernelRange<G> {
+    fn clone(&self) -> Self {
+        KernelRange {
+            inner: self.inner.clone(),
+            kernel_t_max: self.kernel_t_max,
+            found: AtomicU32::new(self.found.load(Relaxed)),
+        }
+    }
+}
+
+impl<G: Geometry> Geometry for KernelRange<G> {
+    fn len(&self) -> usize {
+        self.inner.len()
+    }
+    fn bounds(&self, prim: u32) -> Aabb {
+        self.inner.bounds(prim)
+    }
+    fn centroid(&self, prim: u32) -> Vec3A {
+        self.inner.centroid(prim)
+    }
+    #[inline(always)]
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
+        let mut full = *ray;
+        full.t_max = self.kernel_t_max;
+        let t = self.inner.intersect(prim, &full, t_max);
+        if t.is_some() {
+            self.found.store(prim, Relaxed);
+        }
+        t
+    }
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
+        self.inner.overlaps_box(prim, cell)
+    }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        self.inner.clipped_bounds(prim, cell)
+    }
+    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
+        self.inner.normal(prim, ray, t)
+    }
+    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
+        self.inner.extent_along(prim, dir)
+    }
+    fn own_plane(&self, prim: u32) -> Option<(Vec3A, f32)> {
+        self.inner.own_plane(prim)
+    }
+}
+
+/// The closest hit of `ray`, testing `*last` (the previous ray's hit primitive) first; updates
+/// `*last` to this ray's hit primitive (`None` on a miss).
+#[inline]
+pub fn closest_hit<I: Index, G: Geometry, S: Stats>(
+    index: &I,
+    range: &mut KernelRange<G>,
+    ray: &Ray,
+    last: &mut Option<u32>,
+    stats: &mut S,
+) -> Option<Hit> {
+    let hit = match last.and_then(|p| {
+        stats.prim_test();
+        range.inner.intersect(p, ray, ray.t_max)
+    }) {
+        Some(t_last) => {
+            range.kernel_t_max = ray.t_max;
+            let mut narrowed = *ray;
+            narrowed.t_max = t_last;
+            index.closest_hit(&*range, &narrowed, stats)
+        }
+        None => index.closest_hit(&range.inner, ray, stats),
+    };
+    *last = hit.map(|h| h.prim);
+    hit
+}
+
+/// Whether `ray` hits anything, answering at once when `*last` (the primitive that last
+/// occluded a ray of this worker) is hit; updates `*last` to the occluder found, if any.
+#[inline]
+pub fn any_hit<I: Index, G: Geometry, S: Stats>(
+    index: &I,
+    range: &mut KernelRange<G>,
+    ray: &Ray,
+    last: &mut Option<u32>,
+    stats: &mut S,
+) -> bool {
+    if let Some(p) = *last {
+        stats.prim_test();
+        if range.inner.intersect(p, ray, ray.t_max).is_some() {
+            return true;
+        }
+    }
+    range.kernel_t_max = ray.t_max;
+    let occluded = index.any_hit(&*range, ray, stats);
+    *last = occluded.then(|| range.found.load(Relaxed));
+    occluded
+}
