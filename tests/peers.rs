@@ -8,7 +8,7 @@ mod common;
 
 use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
 use accelbench::harness::peer_check::{PeerCounts, Verdict, classify};
-use accelbench::harness::suite::{SuiteConfig, run_suite, run_suite_with};
+use accelbench::harness::suite::{Shard, SuiteConfig, run_suite, run_suite_with};
 use accelbench::harness::timing::Query;
 use accelbench::harness::verify::compare_closest;
 use accelbench::harness::workload::{self, RaySet, SetSizes};
@@ -144,6 +144,8 @@ fn config(indices: &[&str], sets: Vec<RaySet>) -> SuiteConfig {
         verify_budget: u64::MAX,
         brute_timing_budget: 0,
         timed: true,
+        shard: Shard::WHOLE,
+        modes: Vec::new(),
     }
 }
 

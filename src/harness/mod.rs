@@ -1,7 +1,7 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
-pub mod shard;
 pub mod peer_check;
+pub mod shard;
 pub mod suite;
 mod suite_result;
 mod suite_set;

@@ -3,9 +3,9 @@
 //! the whole registry).
 #![allow(dead_code)]
 
+pub mod drop_one;
 pub mod far;
 pub mod grid_rays;
-pub mod drop_one;
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::{Mismatch, verify_against_brute};
