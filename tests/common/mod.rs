@@ -128,3 +128,12 @@ pub fn bunny_protocol_sample(bunny: &Scene) -> Vec<Ray> {
     rays.extend(incoherent_rays(&b, 2000, 42));
     rays
 }
+
+/// Runs the `accelbench` binary with `args` from the repository root.
+pub fn accelbench(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the accelbench binary runs")
+}
