@@ -4,15 +4,9 @@
 
 use accelbench::harness::suite::ResultRow;
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn accelbench(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
+mod common;
+use common::accelbench;
 
 fn read_rows(dir: &Path) -> Vec<ResultRow> {
     csv::Reader::from_path(dir.join("results.csv"))

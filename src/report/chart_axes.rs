@@ -170,7 +170,7 @@ mod tests {
                 .collect()
         };
         assert_eq!(labels(-0.3..2.4, true), ["1", "10", "100"]);
-        assert_eq!(labels(2.9..5.1, true), ["1000", "1e4", "1e5"]);
+        assert_eq!(labels(2.9..5.1, true), ["1000", "10000", "1e5"]);
         assert_eq!(labels(0.1..0.9, true), ["2", "5"]);
         assert_eq!(
             labels(0.0..1.0, false),

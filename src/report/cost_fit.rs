@@ -12,7 +12,22 @@
 //! Counts that move together over the points (a tree whose steps grow with its tests) make the
 //! split uncertain; `r2` and `points` say how well the model explains the times.
 
+use super::fixed;
 use crate::harness::suite::ResultRow;
+
+impl CostFit {
+    /// Its table cells: index, ns per step, ns per test, ns per ray, R², points.
+    pub fn cells(&self) -> [String; 6] {
+        [
+            self.index.clone(),
+            fixed(self.ns_per_step, 2),
+            fixed(self.ns_per_test, 2),
+            fixed(self.ns_per_ray, 1),
+            fixed(self.r2, 3),
+            self.points.to_string(),
+        ]
+    }
+}
 
 /// One observation: counts per ray and the measured time per ray in nanoseconds.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -34,17 +34,12 @@ pub(super) fn cost_tables(rows: &[ResultRow], fits: &[CostFit]) -> String {
                  <th>R²</th><th>points</th></tr></thead><tbody>\n"
         .to_owned();
     for f in fits {
-        let _ = writeln!(
-            s,
-            "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
-             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
-            esc(&f.index),
-            num(f.ns_per_step, 2),
-            num(f.ns_per_test, 2),
-            num(f.ns_per_ray, 1),
-            num(f.r2, 3),
-            f.points
-        );
+        let [index, numbers @ ..] = f.cells();
+        let _ = write!(s, "<tr><td>{}</td>", esc(&index));
+        for n in numbers {
+            let _ = write!(s, "<td class=\"num\">{n}</td>");
+        }
+        s.push_str("</tr>\n");
     }
     s.push_str("</tbody></table>\n<p>Primitive tests / node steps per ray (counting pass):</p>\n");
     let labels = uniq_labels(rows);

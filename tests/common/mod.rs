@@ -183,3 +183,12 @@ pub fn assert_mode_agrees(mode: accelbench::index::TraceMode) {
         }
     }
 }
+
+/// Runs the `accelbench` binary with `args` from the repository root.
+pub fn accelbench(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the accelbench binary runs")
+}
