@@ -101,7 +101,8 @@ pub fn permute(mut i: u32, l: u32, p: u32) -> u32 {
             break;
         }
     }
-    (i.wrapping_add(p)) % l
+    // `p % l` first: `i + p` wrapping at 2^32 would map two elements to one.
+    (i + p % l) % l
 }
 
 #[cfg(test)]
