@@ -170,7 +170,14 @@ fn quick_run_end_to_end_writes_the_report() {
     let rows: Vec<ResultRow> = r.deserialize().collect::<Result<_, _>>().unwrap();
     let scenes: std::collections::HashSet<_> = rows.iter().map(|r| r.scene.as_str()).collect();
     assert_eq!(scenes.len(), 2, "{scenes:?}");
-    assert!(rows.iter().all(|r| r.mismatches == 0 && r.rays > 0));
+    assert!(rows.iter().all(|r| r.rays > 0));
+    // Ours must match brute force; peers (Embree and tinybvh with `--features peers`) use their
+    // own triangle tests, and their ties are reported, not failed.
+    assert!(
+        rows.iter()
+            .filter(|r| !accelbench::index::is_peer(&r.index))
+            .all(|r| r.mismatches == 0)
+    );
     let meta: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
     assert!(meta["git_revision"].is_string() && meta["cores"].as_u64().unwrap() >= 1);
