@@ -1,7 +1,7 @@
 //! Scoring a kernel against the exact reference: the reference closest hit of a ray, and the
 //! tallies behind the false-miss, false-hit and wrong-primitive rates and the `t` errors.
 
-use super::kernels::Prims;
+use super::kernels::{Precision, Prims};
 use super::reference::Reference;
 use crate::geometry::Ray;
 
@@ -78,8 +78,19 @@ impl Tally {
         self
     }
 
-    /// Scores one kernel answer against the reference.
-    pub fn score(&mut self, prims: &Prims, ray: &Ray, r: RefClosest, got: Option<(usize, f64)>) {
+    /// Scores one kernel answer (its primitive and `t`, computed in `precision`) against the
+    /// reference. Another primitive than the reference's is a tie, not wrong, when its exact `t`
+    /// equals the reference's to within `1e-12 t`, or, for an `f32` kernel, rounds to the same
+    /// `f32`: an `f32` result cannot order two distances closer than that, and the suite's tie
+    /// rule (lowest id at equal `t`) then decides.
+    pub fn score(
+        &mut self,
+        prims: &Prims,
+        ray: &Ray,
+        r: RefClosest,
+        got: Option<(usize, f64)>,
+        precision: Precision,
+    ) {
         self.rays += 1;
         match (r, got) {
             (RefClosest::Unverifiable, _) => self.unverifiable += 1,
@@ -97,7 +108,8 @@ impl Tally {
                 // Another primitive is right only when the reference has it tied at `t`.
                 let tied = p == prim
                     || matches!(prims.reference(p, ray),
-                        Reference::Hit(tp) if (tp - t).abs() <= 1e-12 * t.abs());
+                        Reference::Hit(tp) if (tp - t).abs() <= 1e-12 * t.abs()
+                            || (precision == Precision::F32 && tp as f32 == t as f32));
                 if !tied {
                     self.wrong += 1;
                     return;
@@ -141,12 +153,18 @@ mod tests {
         let r = reference_closest(&prims, &spheres, &ray);
         assert!(matches!(r, RefClosest::Hit { prim: 0, t } if t == 2.0));
         let mut tally = Tally::default();
-        tally.score(&prims, &ray, r, None);
-        tally.score(&prims, &ray, r, Some((1, 3.0)));
-        tally.score(&prims, &ray, r, Some((0, 2.0 * (1.0 + 1e-6))));
+        tally.score(&prims, &ray, r, None, Precision::F32);
+        tally.score(&prims, &ray, r, Some((1, 3.0)), Precision::F32);
+        tally.score(
+            &prims,
+            &ray,
+            r,
+            Some((0, 2.0 * (1.0 + 1e-6))),
+            Precision::F32,
+        );
         let away = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), -Vec3::Z).unwrap();
         let miss = reference_closest(&prims, &spheres, &away);
-        tally.score(&prims, &away, miss, Some((0, 1.0)));
+        tally.score(&prims, &away, miss, Some((0, 1.0)), Precision::F32);
         assert_eq!((tally.rays, tally.ref_hits, tally.ref_misses), (4, 3, 1));
         assert_eq!(
             (tally.false_misses, tally.wrong, tally.false_hits),
@@ -155,5 +173,29 @@ mod tests {
         assert!((tally.err_max - 1e-6).abs() < 1e-12);
         assert_eq!(rate(1, 4), 0.25);
         assert_eq!(rate(1, 0), 0.0);
+    }
+
+    #[test]
+    fn another_primitive_at_the_same_f32_distance_is_a_tie_for_f32_kernels_only() {
+        // Triangle 0 lies in z = 2, triangle 1 in z = 2 + x / 2: a ray up through x = 2^-30
+        // meets 0 at t = 2 and 1 at t = 2 + 2^-31, which rounds to the same `f32`.
+        let corners = |z0: f32, z1: f32| {
+            Triangle::new(
+                Vec3A::new(0.0, 0.0, z0),
+                Vec3A::new(4.0, 0.0, z1),
+                Vec3A::new(0.0, 4.0, z0),
+            )
+        };
+        let prims = Prims::Tris(vec![corners(2.0, 2.0), corners(2.0, 4.0)]);
+        let spheres: Vec<_> = (0..2).map(|i| prims.bounding_sphere(i)).collect();
+        let ray = Ray::infinite(Vec3::new(2f32.powi(-30), 1.0, 0.0), Vec3::Z).unwrap();
+        let r = reference_closest(&prims, &spheres, &ray);
+        assert!(matches!(r, RefClosest::Hit { prim: 0, t } if t == 2.0));
+        let mut f32_tally = Tally::default();
+        f32_tally.score(&prims, &ray, r, Some((1, 2.0)), Precision::F32);
+        assert_eq!(f32_tally.wrong, 0);
+        let mut f64_tally = Tally::default();
+        f64_tally.score(&prims, &ray, r, Some((1, 2.0)), Precision::F64);
+        assert_eq!(f64_tally.wrong, 1);
     }
 }

@@ -194,7 +194,10 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
         "# Kernel accuracy\n\nPooled over families and offsets; rates against the exact \
          reference (exact edge-function signs, double-double t) for triangles and spheres, \
          against the f64 mirror of each kernel for the shapes (rays whose mirror decision lies \
-         within its rounding bound are unverifiable and left out).\n\n\
+         within its rounding bound are unverifiable and left out). A primitive other than the \
+         reference's is wrong unless its exact t ties the reference's (to 1e-12 relative, or, \
+         for an f32 kernel, rounding to the same f32, where the suite's lowest-id rule \
+         decides).\n\n\
          | kernel | precision | rays | unverifiable | false-miss rate | false-hit rate | \
          wrong-primitive rate | max rel t error | mean rel t error | ns/test (random) |\n\
          |---|---|---|---|---|---|---|---|---|---|\n",

@@ -167,7 +167,7 @@ fn measure(
                         let got = kernel_closest(k, p, &prims, ray, &r64);
                         slot.fallbacks += fallback_count() - before;
                         slot.tests += prims.len() as u64;
-                        slot.score(&prims, ray, r, got);
+                        slot.score(&prims, ray, r, got, p);
                     }
                     acc
                 },
