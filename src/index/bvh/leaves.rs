@@ -82,6 +82,19 @@ impl LeafStore {
 }
 
 impl Leaves<'_> {
+    /// Prefetches the start of `leaf`'s contents (its first triangle block, or its ids).
+    #[inline(always)]
+    pub fn prefetch(self, leaf: Child) {
+        match self {
+            Leaves::Ids(ids) => {
+                super::walk::prefetch(ids.as_ptr().wrapping_add(leaf.index as usize))
+            }
+            Leaves::Blocks(b) => {
+                super::walk::prefetch(b.as_ptr().wrapping_add(leaf.index as usize))
+            }
+        }
+    }
+
     /// Tests the leaf's primitives against `[ray.t_min, best t]`, offering every hit to `best`.
     #[inline(always)]
     pub fn closest<G: Geometry, S: Stats>(

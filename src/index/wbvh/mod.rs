@@ -47,7 +47,7 @@ impl<const C: usize> Index for WideBvh<C> {
         let (root_bounds, root, nodes, prim_ids) = binary.parts();
         let mut wide = collapse::<C>(root, nodes);
         let leaf_refs = wide.nodes.iter_mut().flat_map(|n| {
-            let kids = n.valid.count_ones() as usize;
+            let kids = n.width();
             n.children.iter_mut().flatten().take(kids)
         });
         let root_ref = Some(&mut wide.root);
@@ -89,7 +89,7 @@ impl<const C: usize> Index for WideBvh<C> {
         let memory_bytes = size_of::<Aabb>()
             + self.nodes.len() * size_of::<WideNode<C>>()
             + self.leaf_store.bytes();
-        let children: u32 = self.nodes.iter().map(|n| n.valid.count_ones()).sum();
+        let children: usize = self.nodes.iter().map(WideNode::width).sum();
         IndexInfo {
             nodes: self.nodes.len() + self.leaves,
             leaves: self.leaves,
@@ -135,8 +135,8 @@ impl<const C: usize> WideBvh<C> {
             leaf(self.root);
         }
         for n in &self.nodes {
-            kids[n.valid.count_ones() as usize] += 1;
-            for i in 0..n.valid.count_ones() as usize {
+            kids[n.width()] += 1;
+            for i in 0..n.width() {
                 let c = n.child(i);
                 if c.is_leaf() {
                     leaf(c);

@@ -3,37 +3,42 @@
 //! A node of `C` chunks holds up to `4 * C` children: their boxes in structure-of-arrays form,
 //! per axis the `min` planes of all children in `4 * C` consecutive lanes (likewise `max`), so
 //! one SIMD slab pass tests four (`C = 1`, [`Boxes4`]) or eight (`C = 2`, one AVX pass) boxes,
-//! and their references. Lanes past the children (bit clear in `valid`) hold zero boxes and are
-//! masked out of every test.
+//! and their references. Lanes past the children hold NaN planes, which mark them absent
+//! ([`WideNode::valid`]); they are masked out of every test.
+//!
+//! Size: the references first, then the planes, no other field: `C = 1` is 128 bytes (two cache
+//! lines), `C = 2` 256 bytes (four), aligned to a cache line.
 
 use crate::geometry::Aabb;
 use crate::index::bvh::node::{Child, Node};
 use crate::index::bvh::slab::{Boxes4, SlabRay, hit_boxes4, hit_boxes8};
 use glam::Vec4;
 
-/// Up to `4 * C` children.
+/// Up to `4 * C` children, filling lanes `0..n`.
 #[derive(Debug, Clone, Copy)]
-#[repr(C, align(32))]
+#[repr(C, align(64))]
 pub struct WideNode<const C: usize> {
-    /// `min[axis][chunk][lane]`: child `4 * chunk + lane`'s lower plane on `axis`.
+    /// Child `4 * chunk + lane`'s reference in `children[chunk][lane]`.
+    pub children: [[Child; 4]; C],
+    /// `min[axis][chunk][lane]`: child `4 * chunk + lane`'s lower plane on `axis`; NaN on every
+    /// axis in lanes without a child.
     pub min: [[Vec4; C]; 3],
     /// Upper planes, as `min`.
     pub max: [[Vec4; C]; 3],
-    pub children: [[Child; 4]; C],
-    /// Bit `i` set when child `i` exists (children fill lanes `0..n`).
-    pub valid: u32,
 }
+
+const _: () = assert!(size_of::<WideNode<1>>() == 128 && size_of::<WideNode<2>>() == 256);
 
 impl<const C: usize> WideNode<C> {
     fn new(kids: &[(Aabb, Child)]) -> WideNode<C> {
         debug_assert!((2..=4 * C).contains(&kids.len()) || kids.len() == 1);
         let mut n = WideNode {
-            min: [[Vec4::ZERO; C]; 3],
-            max: [[Vec4::ZERO; C]; 3],
             children: [[Child::default(); 4]; C],
-            valid: (1u32 << kids.len()) - 1,
+            min: [[Vec4::NAN; C]; 3],
+            max: [[Vec4::NAN; C]; 3],
         };
         for (i, (b, child)) in kids.iter().enumerate() {
+            debug_assert!(!b.min.x.is_nan(), "a NaN plane would mark child {i} absent");
             let (chunk, lane) = (i / 4, i % 4);
             for k in 0..3 {
                 n.min[k][chunk][lane] = b.min[k];
@@ -42,6 +47,20 @@ impl<const C: usize> WideNode<C> {
             n.children[chunk][lane] = *child;
         }
         n
+    }
+
+    /// Bit `i` set when child `i` exists (its lower `x` plane is not NaN).
+    #[inline(always)]
+    pub fn valid(&self) -> u32 {
+        (0..C).fold(0, |m, c| {
+            let x = self.min[0][c];
+            m | x.cmpeq(x).bitmask() << (4 * c)
+        })
+    }
+
+    /// Number of children.
+    pub fn width(&self) -> usize {
+        self.valid().count_ones() as usize
     }
 
     /// Child `i`'s reference.
@@ -69,7 +88,7 @@ impl<const C: usize> WideNode<C> {
             enter[..4].copy_from_slice(&e.to_array());
             (m, enter)
         };
-        (mask & self.valid, enter)
+        (mask & self.valid(), enter)
     }
 }
 
