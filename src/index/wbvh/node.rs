@@ -104,8 +104,16 @@ pub struct Collapsed<const C: usize> {
 /// Collapses the binary tree (`root` over `nodes`): each wide node takes its binary node's two
 /// children and repeatedly replaces the inner child of largest surface area by its two
 /// children while it has fewer than `4 * C`; the remaining inner children become wide nodes.
-/// Leaves keep their primitive ranges.
-pub fn collapse<const C: usize>(root: Child, nodes: &[Node]) -> Collapsed<C> {
+/// Leaves keep their primitive ranges, and an inner child whose subtree holds at most
+/// `merge_up_to` primitives becomes one leaf over them (with `merge_up_to` = 4, the lanes of a
+/// triangle block, a subtree of up to four triangles costs one block test instead of a node
+/// step and up to four partly empty blocks).
+pub fn collapse<const C: usize>(root: Child, nodes: &[Node], merge_up_to: u32) -> Collapsed<C> {
+    let binary = Binary {
+        nodes,
+        merged: merged_leaves(nodes, merge_up_to),
+    };
+    let root = binary.child(root);
     let mut out = Collapsed {
         root,
         nodes: Vec::new(),
@@ -113,19 +121,61 @@ pub fn collapse<const C: usize>(root: Child, nodes: &[Node]) -> Collapsed<C> {
         leaves: usize::from(root.is_leaf()),
     };
     if !root.is_leaf() {
-        out.root = Child::inner(emit(root.index, nodes, &mut out, 1));
+        out.root = Child::inner(emit(root.index, &binary, &mut out, 1));
     }
     out
 }
 
-/// Appends the wide node for binary node `index` (and its subtree); returns its index.
-fn emit<const C: usize>(index: u32, nodes: &[Node], out: &mut Collapsed<C>, level: u32) -> u32 {
-    out.depth = out.depth.max(level + 1);
-    let kids_of = |i: u32| {
-        let n = &nodes[i as usize];
-        [0, 1].map(|k| (n.child_bounds(k), n.children[k]))
+/// The binary tree as the collapse reads it.
+struct Binary<'a> {
+    nodes: &'a [Node],
+    /// Per binary node, the leaf replacing its subtree, if merged.
+    merged: Vec<Option<Child>>,
+}
+
+impl Binary<'_> {
+    /// `c`, or the leaf replacing its subtree.
+    fn child(&self, c: Child) -> Child {
+        match c.is_leaf() {
+            true => c,
+            false => self.merged[c.index as usize].unwrap_or(c),
+        }
+    }
+
+    /// Binary node `i`'s two children with their boxes.
+    fn kids(&self, i: u32) -> [(Aabb, Child); 2] {
+        let n = &self.nodes[i as usize];
+        [0, 1].map(|k| (n.child_bounds(k), self.child(n.children[k])))
+    }
+}
+
+/// Per binary node, a leaf over its subtree's primitives when there are at most `merge_up_to`
+/// of them. A subtree's primitives are one contiguous run of ids (the top-down build
+/// partitions in place, so siblings' runs are adjacent); children come after their parent in
+/// `nodes`, so one backward pass computes every run.
+fn merged_leaves(nodes: &[Node], merge_up_to: u32) -> Vec<Option<Child>> {
+    let mut runs = vec![(0u32, 0u32); nodes.len()];
+    for i in (0..nodes.len()).rev() {
+        let [a, b] = nodes[i].children.map(|c| match c.is_leaf() {
+            true => (c.index, c.index + c.count),
+            false => runs[c.index as usize],
+        });
+        debug_assert!(
+            a.1 == b.0 || b.1 == a.0,
+            "sibling runs {a:?} {b:?} not adjacent"
+        );
+        runs[i] = (a.0.min(b.0), a.1.max(b.1));
+    }
+    let leaf = |(first, end): (u32, u32)| {
+        (end - first <= merge_up_to).then(|| Child::leaf(first, end - first))
     };
-    let mut kids: Vec<(Aabb, Child)> = kids_of(index).to_vec();
+    runs.into_iter().map(leaf).collect()
+}
+
+/// Appends the wide node for binary node `index` (and its subtree); returns its index.
+fn emit<const C: usize>(index: u32, binary: &Binary, out: &mut Collapsed<C>, level: u32) -> u32 {
+    out.depth = out.depth.max(level + 1);
+    let mut kids: Vec<(Aabb, Child)> = binary.kids(index).to_vec();
     while kids.len() < 4 * C {
         let Some((pos, _)) = kids
             .iter()
@@ -136,7 +186,7 @@ fn emit<const C: usize>(index: u32, nodes: &[Node], out: &mut Collapsed<C>, leve
             break;
         };
         let (_, opened) = kids.swap_remove(pos);
-        kids.extend(kids_of(opened.index));
+        kids.extend(binary.kids(opened.index));
     }
     let me = out.nodes.len();
     out.nodes.push(WideNode::new(&kids));
@@ -145,7 +195,7 @@ fn emit<const C: usize>(index: u32, nodes: &[Node], out: &mut Collapsed<C>, leve
             out.leaves += 1;
             *child
         } else {
-            Child::inner(emit(child.index, nodes, out, level + 1))
+            Child::inner(emit(child.index, binary, out, level + 1))
         };
         out.nodes[me].children[i / 4][i % 4] = c;
     }
