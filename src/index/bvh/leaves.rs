@@ -18,6 +18,9 @@ use crate::geometry::{ClosestHit, Ray, Triangle};
 use crate::index::Stats;
 use crate::scene::Geometry;
 
+/// Triangles per [`TriangleBlock`]: a leaf of up to this many costs one lane-wise test.
+pub const BLOCK_LANES: u32 = 4;
+
 /// The leaves' contents, owned by the tree.
 #[derive(Debug, Clone)]
 pub enum LeafStore {
@@ -33,24 +36,31 @@ pub enum Leaves<'a> {
 }
 
 impl LeafStore {
-    /// Triangle blocks when the geometry offers every primitive as a block triangle, else the
+    /// The triangles `prim_ids` name, in that order, when the geometry offers every one as a
+    /// block triangle ([`Geometry::block_triangle`]): the leaves can then be blocks.
+    pub fn block_triangles<G: Geometry>(geom: &G, prim_ids: &[u32]) -> Option<Vec<Triangle>> {
+        prim_ids.iter().map(|&p| geom.block_triangle(p)).collect()
+    }
+
+    /// Triangle blocks when `tris` (from [`LeafStore::block_triangles`]) is `Some`, else the
     /// ids. `leaves` are every leaf reference of the tree over `prim_ids`; with blocks their
     /// `index` is rewritten to the leaf's first block.
-    pub fn new<'c, G: Geometry>(
-        geom: &G,
+    pub fn new<'c>(
         prim_ids: Vec<u32>,
+        tris: Option<Vec<Triangle>>,
         leaves: impl IntoIterator<Item = &'c mut Child>,
     ) -> LeafStore {
-        let tris: Option<Vec<Triangle>> =
-            prim_ids.iter().map(|&p| geom.block_triangle(p)).collect();
         let Some(tris) = tris else {
             return LeafStore::Ids(prim_ids);
         };
-        let mut blocks = Vec::with_capacity(prim_ids.len().div_ceil(4));
+        let mut blocks = Vec::with_capacity(prim_ids.len().div_ceil(BLOCK_LANES as usize));
         for leaf in leaves {
             let range = leaf.index as usize..(leaf.index + leaf.count) as usize;
             leaf.index = blocks.len() as u32;
-            for (t, ids) in tris[range.clone()].chunks(4).zip(prim_ids[range].chunks(4)) {
+            for (t, ids) in tris[range.clone()]
+                .chunks(BLOCK_LANES as usize)
+                .zip(prim_ids[range].chunks(BLOCK_LANES as usize))
+            {
                 blocks.push(TriangleBlock::new(t, ids));
             }
         }
@@ -82,6 +92,19 @@ impl LeafStore {
 }
 
 impl Leaves<'_> {
+    /// Prefetches the start of `leaf`'s contents (its first triangle block, or its ids).
+    #[inline(always)]
+    pub fn prefetch(self, leaf: Child) {
+        match self {
+            Leaves::Ids(ids) => {
+                super::walk::prefetch(ids.as_ptr().wrapping_add(leaf.index as usize))
+            }
+            Leaves::Blocks(b) => {
+                super::walk::prefetch(b.as_ptr().wrapping_add(leaf.index as usize))
+            }
+        }
+    }
+
     /// Tests the leaf's primitives against `[ray.t_min, best t]`, offering every hit to `best`.
     #[inline(always)]
     pub fn closest<G: Geometry, S: Stats>(
@@ -104,7 +127,7 @@ impl Leaves<'_> {
             }
             Leaves::Blocks(blocks) => {
                 (0..count).for_each(|_| stats.prim_test());
-                for block in &blocks[first..first + count.div_ceil(4)] {
+                for block in &blocks[first..first + count.div_ceil(BLOCK_LANES as usize)] {
                     let (mut hit, t) = geom.intersect_block(block, ray, best.t());
                     while hit != 0 {
                         let i = hit.trailing_zeros() as usize;
@@ -133,7 +156,7 @@ impl Leaves<'_> {
             }),
             Leaves::Blocks(blocks) => {
                 (0..count).for_each(|_| stats.prim_test());
-                blocks[first..first + count.div_ceil(4)]
+                blocks[first..first + count.div_ceil(BLOCK_LANES as usize)]
                     .iter()
                     .any(|b| geom.intersect_block(b, ray, ray.t_max).0 != 0)
             }

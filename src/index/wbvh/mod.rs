@@ -15,7 +15,7 @@ mod traverse;
 use super::bvh::BvhParams;
 use super::{BuildError, Bvh, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, Hit, Ray};
-use crate::index::bvh::leaves::LeafStore;
+use crate::index::bvh::leaves::{BLOCK_LANES, LeafStore};
 use crate::index::bvh::node::Child;
 use crate::index::bvh::walk;
 use crate::scene::Geometry;
@@ -45,15 +45,19 @@ impl<const C: usize> Index for WideBvh<C> {
         const { assert!(C == 1 || C == 2, "the traversal's buffers hold 8 children") };
         let binary = Bvh::build(geom, params)?;
         let (root_bounds, root, nodes, prim_ids) = binary.parts();
-        let mut wide = collapse::<C>(root, nodes);
+        // Triangle-block leaves test four triangles at the cost of one: merge subtrees of up to
+        // four; id leaves test one primitive at a time: keep the binary tree's leaves.
+        let tris = LeafStore::block_triangles(geom, prim_ids);
+        let merge_up_to = if tris.is_some() { BLOCK_LANES } else { 0 };
+        let mut wide = collapse::<C>(root, nodes, merge_up_to);
         let leaf_refs = wide.nodes.iter_mut().flat_map(|n| {
-            let kids = n.valid.count_ones() as usize;
+            let kids = n.width();
             n.children.iter_mut().flatten().take(kids)
         });
         let root_ref = Some(&mut wide.root);
         let leaf_store = LeafStore::new(
-            geom,
             prim_ids.to_vec(),
+            tris,
             root_ref
                 .into_iter()
                 .chain(leaf_refs)
@@ -89,7 +93,7 @@ impl<const C: usize> Index for WideBvh<C> {
         let memory_bytes = size_of::<Aabb>()
             + self.nodes.len() * size_of::<WideNode<C>>()
             + self.leaf_store.bytes();
-        let children: u32 = self.nodes.iter().map(|n| n.valid.count_ones()).sum();
+        let children: usize = self.nodes.iter().map(WideNode::width).sum();
         IndexInfo {
             nodes: self.nodes.len() + self.leaves,
             leaves: self.leaves,
@@ -135,8 +139,8 @@ impl<const C: usize> WideBvh<C> {
             leaf(self.root);
         }
         for n in &self.nodes {
-            kids[n.valid.count_ones() as usize] += 1;
-            for i in 0..n.valid.count_ones() as usize {
+            kids[n.width()] += 1;
+            for i in 0..n.width() {
                 let c = n.child(i);
                 if c.is_leaf() {
                     leaf(c);

@@ -3,37 +3,42 @@
 //! A node of `C` chunks holds up to `4 * C` children: their boxes in structure-of-arrays form,
 //! per axis the `min` planes of all children in `4 * C` consecutive lanes (likewise `max`), so
 //! one SIMD slab pass tests four (`C = 1`, [`Boxes4`]) or eight (`C = 2`, one AVX pass) boxes,
-//! and their references. Lanes past the children (bit clear in `valid`) hold zero boxes and are
-//! masked out of every test.
+//! and their references. Lanes past the children hold NaN planes, which mark them absent
+//! ([`WideNode::valid`]); they are masked out of every test.
+//!
+//! Size: the references first, then the planes, no other field: `C = 1` is 128 bytes (two cache
+//! lines), `C = 2` 256 bytes (four), aligned to a cache line.
 
 use crate::geometry::Aabb;
 use crate::index::bvh::node::{Child, Node};
 use crate::index::bvh::slab::{Boxes4, SlabRay, hit_boxes4, hit_boxes8};
 use glam::Vec4;
 
-/// Up to `4 * C` children.
+/// Up to `4 * C` children, filling lanes `0..n`.
 #[derive(Debug, Clone, Copy)]
-#[repr(C, align(32))]
+#[repr(C, align(64))]
 pub struct WideNode<const C: usize> {
-    /// `min[axis][chunk][lane]`: child `4 * chunk + lane`'s lower plane on `axis`.
+    /// Child `4 * chunk + lane`'s reference in `children[chunk][lane]`.
+    pub children: [[Child; 4]; C],
+    /// `min[axis][chunk][lane]`: child `4 * chunk + lane`'s lower plane on `axis`; NaN on every
+    /// axis in lanes without a child.
     pub min: [[Vec4; C]; 3],
     /// Upper planes, as `min`.
     pub max: [[Vec4; C]; 3],
-    pub children: [[Child; 4]; C],
-    /// Bit `i` set when child `i` exists (children fill lanes `0..n`).
-    pub valid: u32,
 }
+
+const _: () = assert!(size_of::<WideNode<1>>() == 128 && size_of::<WideNode<2>>() == 256);
 
 impl<const C: usize> WideNode<C> {
     fn new(kids: &[(Aabb, Child)]) -> WideNode<C> {
         debug_assert!((2..=4 * C).contains(&kids.len()) || kids.len() == 1);
         let mut n = WideNode {
-            min: [[Vec4::ZERO; C]; 3],
-            max: [[Vec4::ZERO; C]; 3],
             children: [[Child::default(); 4]; C],
-            valid: (1u32 << kids.len()) - 1,
+            min: [[Vec4::NAN; C]; 3],
+            max: [[Vec4::NAN; C]; 3],
         };
         for (i, (b, child)) in kids.iter().enumerate() {
+            debug_assert!(!b.min.x.is_nan(), "a NaN plane would mark child {i} absent");
             let (chunk, lane) = (i / 4, i % 4);
             for k in 0..3 {
                 n.min[k][chunk][lane] = b.min[k];
@@ -42,6 +47,20 @@ impl<const C: usize> WideNode<C> {
             n.children[chunk][lane] = *child;
         }
         n
+    }
+
+    /// Bit `i` set when child `i` exists (its lower `x` plane is not NaN).
+    #[inline(always)]
+    pub fn valid(&self) -> u32 {
+        (0..C).fold(0, |m, c| {
+            let x = self.min[0][c];
+            m | x.cmpeq(x).bitmask() << (4 * c)
+        })
+    }
+
+    /// Number of children.
+    pub fn width(&self) -> usize {
+        self.valid().count_ones() as usize
     }
 
     /// Child `i`'s reference.
@@ -69,7 +88,7 @@ impl<const C: usize> WideNode<C> {
             enter[..4].copy_from_slice(&e.to_array());
             (m, enter)
         };
-        (mask & self.valid, enter)
+        (mask & self.valid(), enter)
     }
 }
 
@@ -85,8 +104,16 @@ pub struct Collapsed<const C: usize> {
 /// Collapses the binary tree (`root` over `nodes`): each wide node takes its binary node's two
 /// children and repeatedly replaces the inner child of largest surface area by its two
 /// children while it has fewer than `4 * C`; the remaining inner children become wide nodes.
-/// Leaves keep their primitive ranges.
-pub fn collapse<const C: usize>(root: Child, nodes: &[Node]) -> Collapsed<C> {
+/// Leaves keep their primitive ranges, and an inner child whose subtree holds at most
+/// `merge_up_to` primitives becomes one leaf over them (with `merge_up_to` = 4, the lanes of a
+/// triangle block, a subtree of up to four triangles costs one block test instead of a node
+/// step and up to four partly empty blocks).
+pub fn collapse<const C: usize>(root: Child, nodes: &[Node], merge_up_to: u32) -> Collapsed<C> {
+    let binary = Binary {
+        nodes,
+        merged: merged_leaves(nodes, merge_up_to),
+    };
+    let root = binary.child(root);
     let mut out = Collapsed {
         root,
         nodes: Vec::new(),
@@ -94,19 +121,61 @@ pub fn collapse<const C: usize>(root: Child, nodes: &[Node]) -> Collapsed<C> {
         leaves: usize::from(root.is_leaf()),
     };
     if !root.is_leaf() {
-        out.root = Child::inner(emit(root.index, nodes, &mut out, 1));
+        out.root = Child::inner(emit(root.index, &binary, &mut out, 1));
     }
     out
 }
 
-/// Appends the wide node for binary node `index` (and its subtree); returns its index.
-fn emit<const C: usize>(index: u32, nodes: &[Node], out: &mut Collapsed<C>, level: u32) -> u32 {
-    out.depth = out.depth.max(level + 1);
-    let kids_of = |i: u32| {
-        let n = &nodes[i as usize];
-        [0, 1].map(|k| (n.child_bounds(k), n.children[k]))
+/// The binary tree as the collapse reads it.
+struct Binary<'a> {
+    nodes: &'a [Node],
+    /// Per binary node, the leaf replacing its subtree, if merged.
+    merged: Vec<Option<Child>>,
+}
+
+impl Binary<'_> {
+    /// `c`, or the leaf replacing its subtree.
+    fn child(&self, c: Child) -> Child {
+        match c.is_leaf() {
+            true => c,
+            false => self.merged[c.index as usize].unwrap_or(c),
+        }
+    }
+
+    /// Binary node `i`'s two children with their boxes.
+    fn kids(&self, i: u32) -> [(Aabb, Child); 2] {
+        let n = &self.nodes[i as usize];
+        [0, 1].map(|k| (n.child_bounds(k), self.child(n.children[k])))
+    }
+}
+
+/// Per binary node, a leaf over its subtree's primitives when there are at most `merge_up_to`
+/// of them. A subtree's primitives are one contiguous run of ids (the top-down build
+/// partitions in place, so siblings' runs are adjacent); children come after their parent in
+/// `nodes`, so one backward pass computes every run.
+fn merged_leaves(nodes: &[Node], merge_up_to: u32) -> Vec<Option<Child>> {
+    let mut runs = vec![(0u32, 0u32); nodes.len()];
+    for i in (0..nodes.len()).rev() {
+        let [a, b] = nodes[i].children.map(|c| match c.is_leaf() {
+            true => (c.index, c.index + c.count),
+            false => runs[c.index as usize],
+        });
+        debug_assert!(
+            a.1 == b.0 || b.1 == a.0,
+            "sibling runs {a:?} {b:?} not adjacent"
+        );
+        runs[i] = (a.0.min(b.0), a.1.max(b.1));
+    }
+    let leaf = |(first, end): (u32, u32)| {
+        (end - first <= merge_up_to).then(|| Child::leaf(first, end - first))
     };
-    let mut kids: Vec<(Aabb, Child)> = kids_of(index).to_vec();
+    runs.into_iter().map(leaf).collect()
+}
+
+/// Appends the wide node for binary node `index` (and its subtree); returns its index.
+fn emit<const C: usize>(index: u32, binary: &Binary, out: &mut Collapsed<C>, level: u32) -> u32 {
+    out.depth = out.depth.max(level + 1);
+    let mut kids: Vec<(Aabb, Child)> = binary.kids(index).to_vec();
     while kids.len() < 4 * C {
         let Some((pos, _)) = kids
             .iter()
@@ -117,7 +186,7 @@ fn emit<const C: usize>(index: u32, nodes: &[Node], out: &mut Collapsed<C>, leve
             break;
         };
         let (_, opened) = kids.swap_remove(pos);
-        kids.extend(kids_of(opened.index));
+        kids.extend(binary.kids(opened.index));
     }
     let me = out.nodes.len();
     out.nodes.push(WideNode::new(&kids));
@@ -126,7 +195,7 @@ fn emit<const C: usize>(index: u32, nodes: &[Node], out: &mut Collapsed<C>, leve
             out.leaves += 1;
             *child
         } else {
-            Child::inner(emit(child.index, nodes, out, level + 1))
+            Child::inner(emit(child.index, binary, out, level + 1))
         };
         out.nodes[me].children[i / 4][i % 4] = c;
     }
