@@ -2,7 +2,7 @@
 //! behind our [`Index`] trait: `embree` (build quality medium, `RTC_SCENE_FLAG_ROBUST`, i.e.
 //! watertight traversal, the fair match for our default exact kernel) and `embree-fast` (the
 //! same without the robust flag: Embree's default). One `rtcIntersect1` per closest-hit query,
-//! one `rtcOccluded1` per any-hit query.
+//! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]).
 //!
 //! Embree tests the triangles itself, so its hits are not bit for bit ours: the suite classifies
 //! each disagreement with brute force as a tie or wrong (`harness::peer_check`). Embree counts
@@ -10,6 +10,7 @@
 //! ([`BuildError::Unsupported`] otherwise).
 
 mod device;
+mod rtc_ray;
 
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
@@ -21,6 +22,7 @@ use embree3::{
     SceneFlags,
 };
 use serde::{Deserialize, Serialize};
+use std::mem::MaybeUninit;
 
 /// Embree's BVH build quality (`RTC_BUILD_QUALITY_*`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -69,20 +71,6 @@ pub type EmbreeFast = EmbreePeer<false>;
 
 impl<const ROBUST: bool> EmbreePeer<ROBUST> {
     const NAME: &'static str = if ROBUST { "embree" } else { "embree-fast" };
-}
-
-/// Our ray as Embree's (`[tnear, tfar]` = `[t_min, t_max]`, every mask bit set).
-#[inline(always)]
-fn rtc_ray(ray: &Ray) -> embree3::Ray {
-    embree3::Ray::new(
-        ray.origin.to_array(),
-        ray.dir.to_array(),
-        ray.t_min,
-        ray.t_max,
-        0.0,
-        u32::MAX,
-        0,
-    )
 }
 
 impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
@@ -143,9 +131,10 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
 
     #[inline]
     fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> Option<Hit> {
-        let mut rh = RayHit::from(rtc_ray(ray));
+        let mut slot = MaybeUninit::<RayHit>::uninit();
+        let rh = rtc_ray::init_ray_hit(&mut slot, ray);
         self.scene
-            .intersect(&mut IntersectContext::incoherent(), &mut rh);
+            .intersect(&mut IntersectContext::incoherent(), rh);
         (rh.hit.geomID != INVALID_ID).then_some(Hit {
             t: rh.ray.tfar,
             prim: rh.hit.primID,
@@ -154,9 +143,9 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> bool {
-        let mut r = rtc_ray(ray);
-        self.scene
-            .occluded(&mut IntersectContext::incoherent(), &mut r)
+        let mut slot = MaybeUninit::uninit();
+        let r = rtc_ray::init_ray(&mut slot, ray);
+        self.scene.occluded(&mut IntersectContext::incoherent(), r)
     }
 
     fn info(&self) -> IndexInfo {
