@@ -3,6 +3,7 @@
 //! watertight traversal, the fair match for our default exact kernel) and `embree-fast` (the
 //! same without the robust flag: Embree's default). One `rtcIntersect1` per closest-hit query,
 //! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]).
+//! `embree-p16` ([`packet16`]) traces the robust scene 16 consecutive rays at a time.
 //!
 //! Embree tests the triangles itself, so its hits are not bit for bit ours: the suite classifies
 //! each disagreement with brute force as a tie or wrong (`harness::peer_check`). Embree counts
@@ -10,6 +11,7 @@
 //! ([`BuildError::Unsupported`] otherwise).
 
 mod device;
+mod packet16;
 mod rtc_ray;
 
 use super::triangle_peer::peer_triangles;
@@ -23,6 +25,8 @@ use embree3::{
 };
 use serde::{Deserialize, Serialize};
 use std::mem::MaybeUninit;
+
+pub use packet16::EmbreeP16;
 
 /// Embree's BVH build quality (`RTC_BUILD_QUALITY_*`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -71,13 +75,13 @@ pub type EmbreeFast = EmbreePeer<false>;
 
 impl<const ROBUST: bool> EmbreePeer<ROBUST> {
     const NAME: &'static str = if ROBUST { "embree" } else { "embree-fast" };
-}
 
-impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
-    type Params = EmbreeParams;
-
-    fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
-        let name = Self::NAME;
+    /// The scene of `geom`'s triangles, errors naming the index `name`.
+    fn build_named<G: Geometry>(
+        geom: &G,
+        params: &EmbreeParams,
+        name: &str,
+    ) -> Result<Self, BuildError> {
         let tris = peer_triangles(geom, name)?;
         let failed = |what: &str, e: embree3::Error| BuildError::Failed {
             index: name.to_owned(),
@@ -127,6 +131,14 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
             triangles: n,
             build_threads,
         })
+    }
+}
+
+impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
+    type Params = EmbreeParams;
+
+    fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
+        Self::build_named(geom, params, Self::NAME)
     }
 
     #[inline]
