@@ -1,4 +1,5 @@
-//! How a worker traces its chunk of a batch: ray by ray, with the last hit tested first
+//! How a worker traces its chunk of a batch: ray by ray ([`Index::closest_hits_chunk`], which an
+//! index may trace several rays at a time), with the last hit tested first
 //! ([`super::last_hit`]), or in packets of neighbouring rays ([`Index::closest_hits_packet`]).
 //! Rays of a chunk are consecutive in the batch (image order for camera sets), and each chunk
 //! starts with an empty last-hit cache, so results never depend on the thread count.
@@ -35,6 +36,35 @@ impl TraceMode {
     }
 }
 
+/// Closest hits of `rays`, one [`Index::closest_hit`] per ray (`out` and `stats` as long as
+/// `rays`).
+#[inline]
+pub fn each_closest<I: Index, G: Geometry, S: Stats>(
+    index: &I,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [Option<Hit>],
+    stats: &mut [S],
+) {
+    for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
+        *o = index.closest_hit(geom, r, s);
+    }
+}
+
+/// Any-hit results of `rays`, one [`Index::any_hit`] per ray.
+#[inline]
+pub fn each_any<I: Index, G: Geometry, S: Stats>(
+    index: &I,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [bool],
+    stats: &mut [S],
+) {
+    for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
+        *o = index.any_hit(geom, r, s);
+    }
+}
+
 /// Closest hits of one chunk (`out` and `stats` as long as `rays`).
 pub fn closest_chunk<I: Index, G: Geometry, S: Stats>(
     index: &I,
@@ -45,11 +75,7 @@ pub fn closest_chunk<I: Index, G: Geometry, S: Stats>(
     stats: &mut [S],
 ) {
     match mode {
-        TraceMode::Single => {
-            for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-                *o = index.closest_hit(geom, r, s);
-            }
-        }
+        TraceMode::Single => index.closest_hits_chunk(geom, rays, out, stats),
         TraceMode::LastHit => {
             let mut range = KernelRange::new(geom.clone());
             let mut last = None;
@@ -80,11 +106,7 @@ pub fn any_chunk<I: Index, G: Geometry, S: Stats>(
     stats: &mut [S],
 ) {
     match mode {
-        TraceMode::Single => {
-            for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-                *o = index.any_hit(geom, r, s);
-            }
-        }
+        TraceMode::Single => index.any_hits_chunk(geom, rays, out, stats),
         TraceMode::LastHit => {
             let mut range = KernelRange::new(geom.clone());
             let mut last = None;

@@ -114,6 +114,33 @@ pub trait Index: Sized + Send + Sync + 'static {
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;
 
+    /// Closest hits of a chunk of consecutive rays of a batch (the harness's parallel work item,
+    /// at most 64 rays; image order for camera sets; `out` and `stats` as long as `rays`): how
+    /// the harness traces a batch ray by ray ([`TraceMode::Single`]). By default [`Index::closest_hit`] per ray; an index that traces
+    /// several rays per call (Embree's 16-ray packets, `embree-p16`) overrides it.
+    #[inline]
+    fn closest_hits_chunk<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        batch::each_closest(self, geom, rays, out, stats);
+    }
+
+    /// Any-hit results of a chunk, as [`Index::closest_hits_chunk`].
+    #[inline]
+    fn any_hits_chunk<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        batch::each_any(self, geom, rays, out, stats);
+    }
+
     /// Closest hits of a packet of neighbouring rays (at most [`MAX_PACKET`]; `out` and `stats`
     /// as long as `rays`). By default ray by ray; an index with packet traversal overrides it.
     #[inline]
@@ -124,9 +151,7 @@ pub trait Index: Sized + Send + Sync + 'static {
         out: &mut [Option<Hit>],
         stats: &mut [S],
     ) {
-        for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-            *o = self.closest_hit(geom, r, s);
-        }
+        batch::each_closest(self, geom, rays, out, stats);
     }
 
     /// Any-hit results of a packet, as [`Index::closest_hits_packet`].
@@ -138,8 +163,6 @@ pub trait Index: Sized + Send + Sync + 'static {
         out: &mut [bool],
         stats: &mut [S],
     ) {
-        for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-            *o = self.any_hit(geom, r, s);
-        }
+        batch::each_any(self, geom, rays, out, stats);
     }
 }

@@ -65,6 +65,8 @@ const REGISTRY: &[Entry] = &[
     entry::<super::embree_peer::Embree>("embree", Kind::Peer),
     #[cfg(feature = "embree")]
     entry::<super::embree_peer::EmbreeFast>("embree-fast", Kind::Peer),
+    #[cfg(feature = "embree")]
+    entry::<super::embree_peer::EmbreeP16>("embree-p16", Kind::Peer),
     #[cfg(feature = "tinybvh")]
     entry::<super::tinybvh_peer::TinyBvh8>("tinybvh-bvh8", Kind::Peer),
 ];

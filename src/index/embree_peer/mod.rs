@@ -2,7 +2,8 @@
 //! behind our [`Index`] trait: `embree` (build quality medium, `RTC_SCENE_FLAG_ROBUST`, i.e.
 //! watertight traversal, the fair match for our default exact kernel) and `embree-fast` (the
 //! same without the robust flag: Embree's default). One `rtcIntersect1` per closest-hit query,
-//! one `rtcOccluded1` per any-hit query.
+//! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]).
+//! `embree-p16` ([`packet16`]) traces the robust scene 16 consecutive rays at a time.
 //!
 //! Embree tests the triangles itself, so its hits are not bit for bit ours: the suite classifies
 //! each disagreement with brute force as a tie or wrong (`harness::peer_check`). Embree counts
@@ -10,6 +11,8 @@
 //! ([`BuildError::Unsupported`] otherwise).
 
 mod device;
+mod packet16;
+mod rtc_ray;
 
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
@@ -21,6 +24,9 @@ use embree3::{
     SceneFlags,
 };
 use serde::{Deserialize, Serialize};
+use std::mem::MaybeUninit;
+
+pub use packet16::EmbreeP16;
 
 /// Embree's BVH build quality (`RTC_BUILD_QUALITY_*`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -69,27 +75,13 @@ pub type EmbreeFast = EmbreePeer<false>;
 
 impl<const ROBUST: bool> EmbreePeer<ROBUST> {
     const NAME: &'static str = if ROBUST { "embree" } else { "embree-fast" };
-}
 
-/// Our ray as Embree's (`[tnear, tfar]` = `[t_min, t_max]`, every mask bit set).
-#[inline(always)]
-fn rtc_ray(ray: &Ray) -> embree3::Ray {
-    embree3::Ray::new(
-        ray.origin.to_array(),
-        ray.dir.to_array(),
-        ray.t_min,
-        ray.t_max,
-        0.0,
-        u32::MAX,
-        0,
-    )
-}
-
-impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
-    type Params = EmbreeParams;
-
-    fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
-        let name = Self::NAME;
+    /// The scene of `geom`'s triangles, errors naming the index `name`.
+    fn build_named<G: Geometry>(
+        geom: &G,
+        params: &EmbreeParams,
+        name: &str,
+    ) -> Result<Self, BuildError> {
         let tris = peer_triangles(geom, name)?;
         let failed = |what: &str, e: embree3::Error| BuildError::Failed {
             index: name.to_owned(),
@@ -140,12 +132,21 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
             build_threads,
         })
     }
+}
+
+impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
+    type Params = EmbreeParams;
+
+    fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
+        Self::build_named(geom, params, Self::NAME)
+    }
 
     #[inline]
     fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> Option<Hit> {
-        let mut rh = RayHit::from(rtc_ray(ray));
+        let mut slot = MaybeUninit::<RayHit>::uninit();
+        let rh = rtc_ray::init_ray_hit(&mut slot, ray);
         self.scene
-            .intersect(&mut IntersectContext::incoherent(), &mut rh);
+            .intersect(&mut IntersectContext::incoherent(), rh);
         (rh.hit.geomID != INVALID_ID).then_some(Hit {
             t: rh.ray.tfar,
             prim: rh.hit.primID,
@@ -154,9 +155,9 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> bool {
-        let mut r = rtc_ray(ray);
-        self.scene
-            .occluded(&mut IntersectContext::incoherent(), &mut r)
+        let mut slot = MaybeUninit::uninit();
+        let r = rtc_ray::init_ray(&mut slot, ray);
+        self.scene.occluded(&mut IntersectContext::incoherent(), r)
     }
 
     fn info(&self) -> IndexInfo {

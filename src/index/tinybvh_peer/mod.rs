@@ -5,14 +5,21 @@
 //! (`split_leaves(4)`, which the conversion requires).
 //!
 //! tinybvh tests the triangles itself, so its hits are not bit for bit ours (the suite classifies
-//! disagreements, `harness::peer_check`). Limits of the binding (tinybvh-rs 0.1.0-beta.3):
-//! - no `t_min`: tinybvh accepts hits at `t > 0`, so a ray with `t_min > 0` can get a hit
-//!   before `t_min` (the protocol's sets start at 0);
-//! - no any-hit entry point (`IsOccluded` is not bound): any-hit queries run the closest-hit
-//!   traversal and test whether it found something;
-//! - no build thread control: tinybvh builds on all cores above 50,000 triangles and on one
-//!   below, whatever pool calls it;
+//! disagreements, `harness::peer_check`). Limits, from the binding's source (tinybvh-rs
+//! 0.1.0-beta.3, `src/cxx_ffi.rs`, over tinybvh 1.6.8):
+//! - no `t_min`: tinybvh's `Ray` has no near distance and accepts hits at `t > 0`, so a ray
+//!   with `t_min > 0` can get a hit before `t_min` (the protocol's sets start at 0);
+//! - no any-hit entry point: tinybvh has `BVH8_CPU::IsOccluded`, but the binding binds only
+//!   `Intersect`, so any-hit queries run the closest-hit traversal and test whether it found
+//!   something (tinybvh's own occlusion query could stop at the first hit found);
+//! - no build thread control: tinybvh's `BVH::threadedBuild` is not bound, so the binned build
+//!   runs on all cores above 50,000 triangles (`MT_BUILD_THRESHOLD`) and on one below, whatever
+//!   pool calls it: its build time on one thread is not measured;
 //! - no counters: the index is [`IndexInfo::uncounted`].
+//!
+//! The binding's build script compiles only its own C++ file, so reaching these through a shim
+//! of ours would mean a second compilation of tinybvh (a build script and C++ toolchain step of
+//! our own) and reading the binding's private pointer: not done.
 //!
 //! Rays are built here, not by tinybvh's `Ray` constructor, because that one normalizes the
 //! direction (its `t` would then be in other units than ours).
