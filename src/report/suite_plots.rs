@@ -61,11 +61,13 @@ pub(super) fn write_plots(
         }
         let mut c = Chart::new(&title, "scene", y);
         c.log_y = log_y;
+        // A chart with nothing to draw (e.g. tests per ray when every index is a peer, which
+        // counts nothing) is left out of the report rather than listed without a file.
         match bar_chart(&dir.join(&file), &c, &g) {
-            Ok(()) | Err(ReportError::NoData(_)) => {}
+            Ok(()) => out.push((title, file)),
+            Err(ReportError::NoData(_)) => {}
             Err(e) => return Err(e),
         }
-        out.push((title, file));
         Ok(())
     };
     let sets = uniq(rows.iter().map(|r| r.ray_set.as_str()));
