@@ -1,4 +1,4 @@
-//! `run --packets N` changes no hit: `bvh` traces packets of 4 and 8 neighbouring rays with
+//! `run --packets N` changes no hit: `bvh`, `bvh4` and `bvh8` trace packets of 4 and 8 neighbouring rays with
 //! one shared traversal and an active mask, the other indices ray by ray; every ray gets
 //! brute force's closest hit bit for bit and the same any-hit answer.
 

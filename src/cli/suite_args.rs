@@ -50,7 +50,7 @@ pub struct SuiteArgs {
     #[arg(long)]
     pub last_hit: bool,
     /// Also trace the coherent sets (primary, shadow, dof, motion, lens) in packets of 4 or 8
-    /// neighbouring rays (rows `INDEX+packetsN`; `bvh` traverses packets, the others ray by ray).
+    /// neighbouring rays (rows `INDEX+packetsN`; `bvh`, `bvh4` and `bvh8` traverse packets, the others ray by ray).
     #[arg(long, value_parser = parse_packet_size)]
     pub packets: Option<usize>,
 }

@@ -13,7 +13,7 @@ mod binned;
 mod build;
 pub(crate) mod leaves;
 pub(crate) mod node;
-mod packet;
+pub(crate) mod packet;
 pub mod params;
 mod prim_ref;
 pub(crate) mod slab;
@@ -108,7 +108,7 @@ impl Index for Bvh {
         out: &mut [Option<Hit>],
         stats: &mut [S],
     ) {
-        packet::closest_hits(self, geom, rays, out, stats)
+        packet::closest_hits(&self.tree(), geom, rays, out, stats)
     }
 
     fn any_hits_packet<G: Geometry, S: Stats>(
@@ -118,7 +118,7 @@ impl Index for Bvh {
         out: &mut [bool],
         stats: &mut [S],
     ) {
-        packet::any_hits(self, geom, rays, out, stats)
+        packet::any_hits(&self.tree(), geom, rays, out, stats)
     }
 
     fn info(&self) -> IndexInfo {

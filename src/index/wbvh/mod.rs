@@ -10,6 +10,7 @@
 //!   ([`LeafStore`], shared with the binary BVH).
 
 mod node;
+mod packet;
 mod traverse;
 
 use super::bvh::BvhParams;
@@ -17,6 +18,7 @@ use super::{BuildError, Bvh, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, Hit, Ray};
 use crate::index::bvh::leaves::{BLOCK_LANES, LeafStore};
 use crate::index::bvh::node::Child;
+use crate::index::bvh::packet as packet_walk;
 use crate::index::bvh::walk;
 use crate::scene::Geometry;
 use node::{WideNode, collapse};
@@ -87,6 +89,26 @@ impl<const C: usize> Index for WideBvh<C> {
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
         walk::any_hit(&self.tree(), geom, ray, stats)
+    }
+
+    fn closest_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        packet_walk::closest_hits(&self.tree(), geom, rays, out, stats)
+    }
+
+    fn any_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        packet_walk::any_hits(&self.tree(), geom, rays, out, stats)
     }
 
     fn info(&self) -> IndexInfo {
