@@ -116,8 +116,9 @@ pub trait Index: Sized + Send + Sync + 'static {
 
     /// Closest hits of a chunk of consecutive rays of a batch (the harness's parallel work item,
     /// at most 64 rays; image order for camera sets; `out` and `stats` as long as `rays`): how
-    /// the harness traces a batch ray by ray ([`TraceMode::Single`]). By default [`Index::closest_hit`] per ray; an index that traces
-    /// several rays per call (Embree's 16-ray packets, `embree-p16`) overrides it.
+    /// the harness traces a batch ray by ray ([`TraceMode::Single`]). By default
+    /// [`Index::closest_hit`] per ray; an index that traces several rays per call (Embree's
+    /// 16-ray packets, `embree-p16`) overrides it.
     #[inline]
     fn closest_hits_chunk<G: Geometry, S: Stats>(
         &self,
