@@ -8,21 +8,10 @@ use accelbench::camera::ModelKind;
 use accelbench::geometry::{Aabb, TriangleKernelKind};
 use accelbench::harness::verify::compare_indices;
 use accelbench::index::{IndexSpec, build_index, index_names, is_peer};
-use accelbench::rays::{CAMERA_SET_SEED, camera_model_rays, ray_to_record};
+use accelbench::rays::{CAMERA_SET_SEED, camera_model_rays};
 use accelbench::scene::generators;
-use md5::{Digest, Md5};
 
 const MODELS: [ModelKind; 3] = [ModelKind::Dof, ModelKind::Motion, ModelKind::Lens];
-
-fn md5_of(rays: &[accelbench::geometry::Ray]) -> String {
-    let mut h = Md5::new();
-    for r in rays {
-        for x in ray_to_record(r) {
-            h.update(x.to_le_bytes());
-        }
-    }
-    format!("{:x}", h.finalize())
-}
 
 fn icosphere_bounds() -> Aabb {
     generators::generate("icosphere", 2000, 1)
@@ -30,36 +19,30 @@ fn icosphere_bounds() -> Aabb {
         .ray_set_bounds()
 }
 
+/// Asserts each model's `side x side` set over `b` has the expected checksum.
+fn assert_checksums(b: &Aabb, side: u32, expected: [(ModelKind, &str); 3], scene: &str) {
+    for (kind, sum) in expected {
+        let rays = camera_model_rays(b, side, kind, CAMERA_SET_SEED).unwrap();
+        let got = common::checksum::md5_of_rays(&rays);
+        assert_eq!(got, sum, "{kind:?} on {scene}, {side} x {side}");
+    }
+}
+
 #[test]
 fn camera_sets_reproduce_their_checksums() {
-    let b = icosphere_bounds();
     let expected = [
         (ModelKind::Dof, "1f15c8c3139bbc8a3d2c82e1602ee02c"),
         (ModelKind::Motion, "12a0a6987665abab8f0db12e736ed452"),
         (ModelKind::Lens, "0507a39839b3569b7120e57f31acc62b"),
     ];
-    for (kind, sum) in expected {
-        let rays = camera_model_rays(&b, 64, kind, CAMERA_SET_SEED).unwrap();
-        assert_eq!(
-            md5_of(&rays),
-            sum,
-            "{kind:?} on icosphere:n=2000,seed=1, 64 x 64"
-        );
-    }
-    let Some(bunny) = common::bunny() else {
-        eprintln!("skipped the bunny: ../shared/meshes/stanford_bunny.obj not found");
-        return;
-    };
-    let b = bunny.ray_set_bounds();
+    assert_checksums(&icosphere_bounds(), 64, expected, "icosphere:n=2000,seed=1");
+    let Some(bunny) = common::bunny() else { return };
     let expected = [
         (ModelKind::Dof, "2e2ba5fc082b92cb69587ff2c659cab9"),
         (ModelKind::Motion, "f7d45e8865ac3828d215b7fddbfa1045"),
         (ModelKind::Lens, "0fe7252f1e7885948f8e6824b5ce68c8"),
     ];
-    for (kind, sum) in expected {
-        let rays = camera_model_rays(&b, 1024, kind, CAMERA_SET_SEED).unwrap();
-        assert_eq!(md5_of(&rays), sum, "{kind:?} on the bunny, 1024 x 1024");
-    }
+    assert_checksums(&bunny.ray_set_bounds(), 1024, expected, "the bunny");
 }
 
 #[test]

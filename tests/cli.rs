@@ -3,39 +3,10 @@
 //! an OBJ that loads back).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the accelbench binary runs")
-}
-
-/// Runs `args`, expects a non-zero exit, and every `expected` piece in stderr.
-fn fails_with(args: &[&str], expected: &[&str]) {
-    let out = run(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "{args:?} should fail; stderr: {err}");
-    for e in expected {
-        assert!(
-            err.contains(e),
-            "{args:?}: expected '{e}' in stderr:\n{err}"
-        );
-    }
-    assert!(!err.contains("panicked"), "{args:?} panicked:\n{err}");
-}
-
-fn succeeds(args: &[&str]) -> String {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?} failed:\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+mod common;
+use common::cli::{accelbench, accelbench_fails as fails_with, accelbench_ok};
 
 fn file(dir: &Path, name: &str, bytes: &[u8]) -> String {
     let p = dir.join(name);
@@ -172,7 +143,7 @@ fn rays_then_trace_writes_one_hit_per_ray() {
     let dir = tempfile::tempdir().unwrap();
     let rays = path(&dir.path().join("r.rays"));
     let hits = path(&dir.path().join("h.hits"));
-    succeeds(&[
+    accelbench_ok(&[
         "rays",
         "--scene",
         "icosphere:n=2000",
@@ -184,7 +155,7 @@ fn rays_then_trace_writes_one_hit_per_ray() {
         &rays,
     ]);
     assert_eq!(std::fs::metadata(&rays).unwrap().len(), 300 * 32);
-    let report = succeeds(&[
+    let report = accelbench_ok(&[
         "trace",
         "--scene",
         "icosphere:n=2000",
@@ -199,7 +170,7 @@ fn rays_then_trace_writes_one_hit_per_ray() {
     ]);
     assert!(report.contains("rays:             300"), "{report}");
     assert_eq!(std::fs::metadata(&hits).unwrap().len(), 300 * 8);
-    succeeds(&[
+    accelbench_ok(&[
         "trace",
         "--scene",
         "icosphere:n=2000",
@@ -217,7 +188,7 @@ fn rays_then_trace_writes_one_hit_per_ray() {
 fn gen_writes_an_obj_that_loads_back_and_example_scenes_load() {
     let dir = tempfile::tempdir().unwrap();
     let obj: PathBuf = dir.path().join("meshes/terrain.obj");
-    succeeds(&[
+    accelbench_ok(&[
         "gen",
         "--generator",
         "terrain",
@@ -226,9 +197,9 @@ fn gen_writes_an_obj_that_loads_back_and_example_scenes_load() {
         "--out",
         &path(&obj),
     ]);
-    let info = succeeds(&["info", "--scene", &path(&obj)]);
+    let info = accelbench_ok(&["info", "--scene", &path(&obj)]);
     assert!(info.contains("triangles:   2048"), "{info}");
-    let info = succeeds(&["info", "--scene", "scenes/generated_mix.toml"]);
+    let info = accelbench_ok(&["info", "--scene", "scenes/generated_mix.toml"]);
     assert!(
         info.contains("lights:      2") && info.contains("fov 50 deg"),
         "{info}"
@@ -237,12 +208,10 @@ fn gen_writes_an_obj_that_loads_back_and_example_scenes_load() {
 
 #[test]
 fn bunny_example_scene_loads_when_shared_meshes_are_present() {
-    let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/stanford_bunny.obj");
-    if !bunny.exists() {
-        eprintln!("skipped: {} is absent", bunny.display());
+    if common::cli::shared_mesh("stanford_bunny.obj").is_none() {
         return;
     }
-    let info = succeeds(&["info", "--scene", "scenes/bunny_on_terrain.toml"]);
+    let info = accelbench_ok(&["info", "--scene", "scenes/bunny_on_terrain.toml"]);
     // 69,451 bunny triangles + a 50,000-triangle terrain (2 * 158^2 = 49,928).
     assert!(info.contains("triangles:   119379"), "{info}");
 }
@@ -255,12 +224,12 @@ fn error_causes_are_printed_once() {
     let d = dir.path();
     let folder = d.join("folder.obj");
     std::fs::create_dir(&folder).unwrap();
-    let out = run(&["info", "--scene", &path(&folder)]);
+    let out = accelbench(&["info", "--scene", &path(&folder)]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert_eq!(err.matches("os error 21").count(), 1, "{err}");
     let rays = file(d, "zero.rays", &ray_record([0.0; 3], [0.0; 3]));
-    let out = run(&["trace", "--scene", "icosphere:n=100", "--rays", &rays]);
+    let out = accelbench(&["trace", "--scene", "icosphere:n=100", "--rays", &rays]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(err.contains("record 0"), "{err}");
@@ -283,7 +252,7 @@ fn obj_face_errors_name_the_line_and_a_byte_order_mark_is_accepted() {
         &["range.obj", "line 5", "vertex 7 does not exist"],
     );
     let bom = file(d, "bom.obj", format!("\u{feff}{tri}").as_bytes());
-    assert!(succeeds(&["info", "--scene", &bom]).contains("primitives:  1"));
+    assert!(accelbench_ok(&["info", "--scene", &bom]).contains("primitives:  1"));
 }
 
 #[test]

@@ -6,7 +6,7 @@ use accelbench::harness::suite::ResultRow;
 use std::path::Path;
 
 mod common;
-use common::accelbench;
+use common::cli::accelbench;
 
 fn read_rows(dir: &Path) -> Vec<ResultRow> {
     csv::Reader::from_path(dir.join("results.csv"))

@@ -8,7 +8,7 @@ mod common;
 
 use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;
-use accelbench::index::{IndexSpec, TraceIndex, build_index, peer_names};
+use accelbench::index::{TraceIndex, peer_names};
 use accelbench::scene::Scene;
 use common::{agreement_rays, agreement_scenes};
 
@@ -21,14 +21,7 @@ fn obvhs_peers() -> Vec<&'static str> {
 }
 
 fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
-    let spec: IndexSpec = spec.parse().unwrap();
-    build_index(&spec, &scene.geometry(), TriangleKernelKind::Watertight).unwrap()
-}
-
-fn closest(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<Option<Hit>> {
-    let mut out = vec![None; rays.len()];
-    index.closest_hits(rays, &mut out);
-    out
+    common::build(spec, scene, TriangleKernelKind::Watertight)
 }
 
 /// Bounds of primitive `prim` of `scene` (triangles first, then spheres).
@@ -66,15 +59,12 @@ fn class(scene: &Scene, ray: &Ray, expected: Hit, got: Option<Hit>) -> Option<&'
 
 #[test]
 fn peers_agree_on_bunny_protocol_rays() {
-    let Some(bunny) = common::bunny() else {
-        eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
-        return;
-    };
+    let Some(bunny) = common::bunny() else { return };
     let rays = common::bunny_protocol_sample(&bunny);
-    let expected = closest(build("brute", &bunny).as_ref(), &rays);
+    let expected = common::closest(build("brute", &bunny).as_ref(), &rays);
     for spec in obvhs_peers() {
         let index = build(spec, &bunny);
-        let m = compare_closest(&rays, &expected, &closest(index.as_ref(), &rays));
+        let m = compare_closest(&rays, &expected, &common::closest(index.as_ref(), &rays));
         assert!(
             m.is_empty(),
             "{spec}: {} mismatches, first {}",
@@ -91,9 +81,9 @@ fn peers_agree_on_bunny_protocol_rays() {
 fn peer_mismatches_on_agreement_scenes_are_of_documented_kinds() {
     for scene in agreement_scenes() {
         let rays = agreement_rays(&scene, 2000);
-        let expected = closest(build("brute", &scene).as_ref(), &rays);
+        let expected = common::closest(build("brute", &scene).as_ref(), &rays);
         for spec in obvhs_peers() {
-            let got = closest(build(spec, &scene).as_ref(), &rays);
+            let got = common::closest(build(spec, &scene).as_ref(), &rays);
             let m = compare_closest(&rays, &expected, &got);
             let mut counts = std::collections::BTreeMap::new();
             for mm in &m {

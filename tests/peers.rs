@@ -33,14 +33,7 @@ fn robust_embree(name: &str) -> bool {
 }
 
 fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
-    let spec: IndexSpec = spec.parse().unwrap();
-    build_index(&spec, &scene.geometry(), TriangleKernelKind::Exact).unwrap()
-}
-
-fn closest(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<Option<Hit>> {
-    let mut out = vec![None; rays.len()];
-    index.closest_hits(rays, &mut out);
-    out
+    common::build(spec, scene, TriangleKernelKind::Exact)
 }
 
 /// Classifies every ray where `got` differs from `expected`, printing the wrong ones.
@@ -76,16 +69,16 @@ fn peers_trace_generated_triangle_scenes_close_to_brute_force() {
         let brute = build("brute", &scene);
         let rays = common::bunny_protocol_sample(&scene);
         let aimed = common::agreement_rays(&scene, 500);
-        let expected = closest(brute.as_ref(), &rays);
-        let expected_aimed = closest(brute.as_ref(), &aimed);
+        let expected = common::closest(brute.as_ref(), &rays);
+        let expected_aimed = common::closest(brute.as_ref(), &aimed);
         let hits = expected.iter().flatten().count();
         for name in peers() {
             let index = build(name, &scene);
             assert!(index.info().memory_bytes > 0, "{name}: no memory reported");
-            let got = closest(index.as_ref(), &rays);
+            let got = common::closest(index.as_ref(), &rays);
             let what = format!("{name} on {}", scene.name);
             let c = judge(&what, &scene, &rays, &expected, &got);
-            let got_aimed = closest(index.as_ref(), &aimed);
+            let got_aimed = common::closest(index.as_ref(), &aimed);
             let c_aimed = judge(&what, &scene, &aimed, &expected_aimed, &got_aimed);
             eprintln!("{what}: {c:?} of {hits} hits; aimed at vertices and edges: {c_aimed:?}");
             if robust_embree(name) {
@@ -108,10 +101,7 @@ fn peers_trace_generated_triangle_scenes_close_to_brute_force() {
 /// every ray can be checked.
 #[test]
 fn embree_is_never_wrong_on_the_bunny_protocol_sets() {
-    let Some(bunny) = common::bunny() else {
-        eprintln!("skipped: ../shared/meshes/stanford_bunny.obj not found");
-        return;
-    };
+    let Some(bunny) = common::bunny() else { return };
     let sizes = SetSizes {
         primary_side: 1024,
         incoherent: 1 << 20,
@@ -123,9 +113,9 @@ fn embree_is_never_wrong_on_the_bunny_protocol_sets() {
         ("incoherent", workload::incoherent(&bunny, &sizes)),
     ];
     for (set, rays) in &sets {
-        let expected = closest(reference.as_ref(), rays);
+        let expected = common::closest(reference.as_ref(), rays);
         for name in peers() {
-            let got = closest(build(name, &bunny).as_ref(), rays);
+            let got = common::closest(build(name, &bunny).as_ref(), rays);
             let c = judge(&format!("{name} {set}"), &bunny, rays, &expected, &got);
             eprintln!("{name} on the bunny, {set}: {} rays, {c:?}", rays.len());
             if robust_embree(name) {
@@ -146,7 +136,7 @@ fn embree_p16_packet_lanes_match_rays_traced_alone() {
     let scene = generators::generate("icosphere", 2000, 3).unwrap();
     let rays = &common::bunny_protocol_sample(&scene)[..1007];
     let p16 = build("embree-p16", &scene);
-    let got = closest(p16.as_ref(), rays);
+    let got = common::closest(p16.as_ref(), rays);
     let hits = got.iter().flatten().count();
     assert!(
         hits > 100 && hits < rays.len(),
@@ -154,7 +144,7 @@ fn embree_p16_packet_lanes_match_rays_traced_alone() {
         rays.len()
     );
     for (i, g) in got.iter().enumerate() {
-        let alone = closest(p16.as_ref(), &rays[i..=i])[0];
+        let alone = common::closest(p16.as_ref(), &rays[i..=i])[0];
         assert_eq!(
             g.map(|h| (h.prim, h.t.to_bits())),
             alone.map(|h| (h.prim, h.t.to_bits())),

@@ -1,36 +1,21 @@
 //! The generated ray sets reproduce ../shared/PROTOCOL.md: checksums on the shared bunny and an
 //! independent straightforward computation of the camera on a simple box.
 use accelbench::geometry::Aabb;
-use accelbench::rays::{incoherent_rays, primary_rays, ray_to_record};
-use accelbench::scene::Scene;
+use accelbench::rays::{incoherent_rays, primary_rays};
 use glam::Vec3A;
-use md5::{Digest, Md5};
-use std::path::Path;
 
-fn md5_of(rays: &[accelbench::geometry::Ray]) -> String {
-    let mut h = Md5::new();
-    for r in rays {
-        for x in ray_to_record(r) {
-            h.update(x.to_le_bytes());
-        }
-    }
-    format!("{:x}", h.finalize())
-}
+mod common;
 
 #[test]
 fn bunny_ray_sets_match_protocol_checksums() {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/stanford_bunny.obj");
-    if !p.exists() {
-        eprintln!("skipped: {} not present", p.display());
-        return;
-    }
-    let b = Scene::load_obj(&p).unwrap().ray_set_bounds();
+    let Some(bunny) = common::bunny() else { return };
+    let b = bunny.ray_set_bounds();
     assert_eq!(
-        md5_of(&primary_rays(&b, 1024, 1024).unwrap()),
+        common::checksum::md5_of_rays(&primary_rays(&b, 1024, 1024).unwrap()),
         "ce45bc03556f0152be8f45958a49e59f"
     );
     assert_eq!(
-        md5_of(&incoherent_rays(&b, 1 << 20, 42)),
+        common::checksum::md5_of_rays(&incoherent_rays(&b, 1 << 20, 42)),
         "14642e7a02a6bda489a74402a0b4af6c"
     );
 }

@@ -11,7 +11,7 @@ use accelbench::render::{
 use accelbench::scene::{AreaLight, Material, Scene, generators, load_scene};
 use glam::Vec3;
 use std::path::Path;
-use std::process::Command;
+mod common;
 
 fn build(name: &str, scene: &Scene) -> Box<dyn TraceIndex> {
     build_index(
@@ -211,14 +211,6 @@ fn area_lights_cast_soft_shadows_and_point_lights_hard_ones() {
     );
 }
 
-fn cli(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
-
 fn read_png(path: &Path) -> Image {
     let dec = png::Decoder::new(std::fs::File::open(path).unwrap());
     let mut r = dec.read_info().unwrap();
@@ -239,7 +231,7 @@ fn cli_writes_pngs_and_rejects_bad_parameters() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("a.png");
     let o = out.to_str().unwrap();
-    let ok = cli(&[
+    let render = [
         "render",
         "--scene",
         "icosphere:n=80",
@@ -249,32 +241,11 @@ fn cli_writes_pngs_and_rejects_bad_parameters() {
         "24",
         "--height",
         "16",
-    ]);
-    assert!(
-        ok.status.success(),
-        "{}",
-        String::from_utf8_lossy(&ok.stderr)
-    );
+    ];
+    common::cli::accelbench_ok(&render);
     let img = read_png(&out);
     assert_eq!((img.width(), img.height()), (24, 16));
-    let ok = cli(&[
-        "render",
-        "--scene",
-        "icosphere:n=80",
-        "--out",
-        o,
-        "--width",
-        "24",
-        "--height",
-        "16",
-        "--heatmap",
-        "nodes",
-    ]);
-    assert!(
-        ok.status.success(),
-        "{}",
-        String::from_utf8_lossy(&ok.stderr)
-    );
+    common::cli::accelbench_ok(&[&render[..], &["--heatmap", "nodes"]].concat());
     assert_eq!(read_png(&out).height(), 16 + legend_height(24));
 
     let missing_dir = dir.path().join("no/such/dir/a.png");
@@ -294,27 +265,26 @@ fn cli_writes_pngs_and_rejects_bad_parameters() {
     ] {
         let mut a = vec!["render", "--scene", "icosphere:n=80", "--out", o];
         a.extend(args);
-        let r = cli(&a);
-        let err = String::from_utf8_lossy(&r.stderr);
-        assert!(!r.status.success(), "{a:?} should fail");
-        assert!(err.contains(expect), "{a:?}: expected '{expect}' in {err}");
-        assert!(!err.contains("panicked"), "{err}");
+        common::cli::accelbench_fails(&a, &[expect]);
     }
-    let r = cli(&[
-        "render",
-        "--scene",
-        "icosphere:n=80",
-        "--out",
-        m,
-        "--width",
-        "4",
-        "--height",
-        "4",
-    ]);
-    let err = String::from_utf8_lossy(&r.stderr);
-    assert!(!r.status.success() && err.contains("cannot write"), "{err}");
-    let r = cli(&["render", "--scene", "nope", "--out", o]);
-    assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("unknown scene"));
+    common::cli::accelbench_fails(
+        &[
+            "render",
+            "--scene",
+            "icosphere:n=80",
+            "--out",
+            m,
+            "--width",
+            "4",
+            "--height",
+            "4",
+        ],
+        &["cannot write"],
+    );
+    common::cli::accelbench_fails(
+        &["render", "--scene", "nope", "--out", o],
+        &["unknown scene"],
+    );
 }
 
 /// A `[[shape]]`'s `material` reaches the shaded image: the same box in front of the camera,

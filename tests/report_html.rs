@@ -9,32 +9,28 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::process::Command;
 
+mod common;
+
 fn quick_run(out: &Path) {
-    let o = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args([
-            "run",
-            "--quick",
-            "--quiet",
-            "--scenes",
-            "icosphere:n=600,soup:n=500,seed=2",
-            "--indices",
-            "bvh,grid,brute",
-            "--rays",
-            "primary,shadow",
-            "--threads",
-            "1,2",
-            "--repeats",
-            "2",
-            "--picture-size",
-            "32",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = common::cli::accelbench_ok(&[
+        "run",
+        "--quick",
+        "--quiet",
+        "--scenes",
+        "icosphere:n=600,soup:n=500,seed=2",
+        "--indices",
+        "bvh,grid,brute",
+        "--rays",
+        "primary,shadow",
+        "--threads",
+        "1,2",
+        "--repeats",
+        "2",
+        "--picture-size",
+        "32",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     // The terminal gets the short verdict and the page's path, not the whole summary.
     assert!(stdout.contains("Verdict at 2 thread(s)"), "{stdout}");
     assert!(stdout.contains("index.html"), "{stdout}");

@@ -6,7 +6,7 @@ use accelbench::harness::suite::ResultRow;
 use std::path::Path;
 
 mod common;
-use common::accelbench;
+use common::cli::accelbench;
 
 fn run(out: &Path, shard: &str) {
     let o = accelbench(&[

@@ -12,7 +12,6 @@ use accelbench::index::{IndexSpec, TraceIndex, build_index, build_index_on};
 use accelbench::scene::{Triangles, generators};
 use common::drop_one::{DROPPED, DropOne};
 use indicatif::ProgressBar;
-use std::process::Command;
 
 fn config(indices: &[&str]) -> SuiteConfig {
     SuiteConfig {
@@ -142,20 +141,15 @@ const COLUMNS: &[&str] = &[
 fn quick_run_end_to_end_writes_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("report");
-    let o = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args([
-            "run",
-            "--quick",
-            "--quiet",
-            "--scenes",
-            "icosphere:n=800,soup:n=600,seed=2",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    common::cli::accelbench_ok(&[
+        "run",
+        "--quick",
+        "--quiet",
+        "--scenes",
+        "icosphere:n=800,soup:n=600,seed=2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     for f in ["results.csv", "meta.json", "summary.md", "mrays_shadow.svg"] {
         assert!(out.join(f).exists(), "{f} missing");
     }
@@ -193,14 +187,7 @@ fn bad_run_arguments_fail_with_a_message() {
         (vec!["run", "--threads", "0"], "thread count"),
         (vec!["verify", "--indices", "brute:x=1"], "unknown field"),
     ] {
-        let o = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-            .args(&args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(!o.status.success(), "{args:?}");
-        assert!(err.contains(expect), "{args:?}: {err}");
+        common::cli::accelbench_fails(&args, &[expect]);
     }
 }
 

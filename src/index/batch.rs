@@ -4,7 +4,8 @@
 //! Rays of a chunk are consecutive in the batch (image order for camera sets), and each chunk
 //! starts with an empty last-hit cache, so results never depend on the thread count.
 
-use super::last_hit::{self, KernelRange};
+use super::last_hit::KernelRange;
+use super::query::Query;
 use super::{Index, Stats};
 use crate::geometry::{Hit, Ray};
 use crate::scene::Geometry;
@@ -65,22 +66,23 @@ pub fn each_any<I: Index, G: Geometry, S: Stats>(
     }
 }
 
-/// Closest hits of one chunk (`out` and `stats` as long as `rays`).
-pub fn closest_chunk<I: Index, G: Geometry, S: Stats>(
+/// The answers to query `Q` for one chunk traced in `mode` (`out` and `stats` as long as
+/// `rays`).
+pub fn trace_chunk<Q: Query, I: Index, G: Geometry, S: Stats>(
     index: &I,
     geom: &G,
     mode: TraceMode,
     rays: &[Ray],
-    out: &mut [Option<Hit>],
+    out: &mut [Q::Answer],
     stats: &mut [S],
 ) {
     match mode {
-        TraceMode::Single => index.closest_hits_chunk(geom, rays, out, stats),
+        TraceMode::Single => Q::chunk(index, geom, rays, out, stats),
         TraceMode::LastHit => {
             let mut range = KernelRange::new(geom.clone());
             let mut last = None;
             for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-                *o = last_hit::closest_hit(index, &mut range, r, &mut last, s);
+                *o = Q::last_hit(index, &mut range, r, &mut last, s);
             }
         }
         TraceMode::Packets(n) => {
@@ -90,38 +92,7 @@ pub fn closest_chunk<I: Index, G: Geometry, S: Stats>(
                 .zip(out.chunks_mut(n))
                 .zip(stats.chunks_mut(n))
             {
-                index.closest_hits_packet(geom, r, o, s);
-            }
-        }
-    }
-}
-
-/// Any-hit results of one chunk (`out` and `stats` as long as `rays`).
-pub fn any_chunk<I: Index, G: Geometry, S: Stats>(
-    index: &I,
-    geom: &G,
-    mode: TraceMode,
-    rays: &[Ray],
-    out: &mut [bool],
-    stats: &mut [S],
-) {
-    match mode {
-        TraceMode::Single => index.any_hits_chunk(geom, rays, out, stats),
-        TraceMode::LastHit => {
-            let mut range = KernelRange::new(geom.clone());
-            let mut last = None;
-            for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-                *o = last_hit::any_hit(index, &mut range, r, &mut last, s);
-            }
-        }
-        TraceMode::Packets(n) => {
-            let n = n.clamp(1, MAX_PACKET);
-            for ((r, o), s) in rays
-                .chunks(n)
-                .zip(out.chunks_mut(n))
-                .zip(stats.chunks_mut(n))
-            {
-                index.any_hits_packet(geom, r, o, s);
+                Q::packet(index, geom, r, o, s);
             }
         }
     }

@@ -2,7 +2,8 @@
 //! [`TraceIndex`] that the harness, the CLI and reports use. The virtual call happens once per
 //! batch of rays; inside, traversal is monomorphized for the index, the geometry and the stats.
 
-use super::batch::{any_chunk, closest_chunk};
+use super::batch::trace_chunk;
+use super::query::{AnyHit, Closest, Query};
 use super::{
     BruteForce, Bsp, BuildError, Bvh, Counters, Index, IndexInfo, KdTree, NeighborOctree, NoStats,
     ObvhsBvh2, ObvhsCwBvh, TopDownOctree, TraceMode,
@@ -309,6 +310,42 @@ pub trait TraceIndex: Send + Sync {
     }
 }
 
+impl<I: Index, G: Geometry> BoundIndex<I, G> {
+    /// Answers query `Q` for a batch traced in `mode`, in parallel chunks of [`CHUNK`] rays,
+    /// with per-ray counters (reset first) when `counters` is given.
+    fn hits_in<Q: Query>(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [Q::Answer],
+        counters: Option<&mut [Counters]>,
+    ) {
+        assert_eq!(rays.len(), out.len(), "one output per ray");
+        let chunk = |(rays, out): (&[Ray], &mut [Q::Answer]), c: Option<&mut [Counters]>| {
+            let (index, geom) = (&self.index, &self.geom);
+            match c {
+                Some(c) => {
+                    c.fill(Counters::default());
+                    trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, c)
+                }
+                None => {
+                    let none = &mut [NoStats; CHUNK][..rays.len()];
+                    trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, none)
+                }
+            }
+        };
+        let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
+        match counters {
+            Some(c) => {
+                assert_eq!(rays.len(), c.len(), "one counter per ray");
+                work.zip(c.par_chunks_mut(CHUNK))
+                    .for_each(|(w, c)| chunk(w, Some(c)));
+            }
+            None => work.for_each(|w| chunk(w, None)),
+        }
+    }
+}
+
 impl<I: Index, G: Geometry> TraceIndex for BoundIndex<I, G> {
     fn name(&self) -> &str {
         &self.name
@@ -338,28 +375,7 @@ impl<I: Index, G: Geometry> TraceIndex for BoundIndex<I, G> {
         out: &mut [Option<Hit>],
         counters: Option<&mut [Counters]>,
     ) {
-        assert_eq!(rays.len(), out.len(), "one output per ray");
-        let chunk = |(rays, out): (&[Ray], &mut [Option<Hit>]), c: Option<&mut [Counters]>| match c
-        {
-            Some(c) => {
-                c.fill(Counters::default());
-                closest_chunk(&self.index, &self.geom, mode, rays, out, c)
-            }
-            None => {
-                let mut none = [NoStats; CHUNK];
-                let none = &mut none[..rays.len()];
-                closest_chunk(&self.index, &self.geom, mode, rays, out, none)
-            }
-        };
-        let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
-        match counters {
-            Some(c) => {
-                assert_eq!(rays.len(), c.len(), "one counter per ray");
-                work.zip(c.par_chunks_mut(CHUNK))
-                    .for_each(|(w, c)| chunk(w, Some(c)));
-            }
-            None => work.for_each(|w| chunk(w, None)),
-        }
+        self.hits_in::<Closest>(mode, rays, out, counters);
     }
     fn any_hits_in(
         &self,
@@ -368,33 +384,7 @@ impl<I: Index, G: Geometry> TraceIndex for BoundIndex<I, G> {
         out: &mut [bool],
         counters: Option<&mut [Counters]>,
     ) {
-        assert_eq!(rays.len(), out.len(), "one output per ray");
-        let chunk = |(rays, out): (&[Ray], &mut [bool]), c: Option<&mut [Counters]>| match c {
-            Some(c) => {
-                c.fill(Counters::default());
-                any_chunk(&self.index, &self.geom, mode, rays, out, c)
-            }
-            None => {
-                let mut none = [NoStats; CHUNK];
-                any_chunk(
-                    &self.index,
-                    &self.geom,
-                    mode,
-                    rays,
-                    out,
-                    &mut none[..rays.len()],
-                )
-            }
-        };
-        let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
-        match counters {
-            Some(c) => {
-                assert_eq!(rays.len(), c.len(), "one counter per ray");
-                work.zip(c.par_chunks_mut(CHUNK))
-                    .for_each(|(w, c)| chunk(w, Some(c)));
-            }
-            None => work.for_each(|w| chunk(w, None)),
-        }
+        self.hits_in::<AnyHit>(mode, rays, out, counters);
     }
 }
 

@@ -98,6 +98,21 @@ fn create_root(path: &Path) -> Result<DrawingArea<SVGBackend<'_>, Shift>, Report
     Ok(root)
 }
 
+/// A chart on `plot` with the title, margins and axis label areas every chart uses (`x_labels`
+/// pixels below the plot for the x axis's labels).
+fn frame<'a, DB: DrawingBackend>(
+    plot: &'a DrawingArea<DB, Shift>,
+    chart: &Chart,
+    x_labels: u32,
+) -> ChartBuilder<'a, 'a, DB> {
+    let mut b = ChartBuilder::on(plot);
+    b.caption(&chart.title, ("sans-serif", 22))
+        .margin(14)
+        .x_label_area_size(x_labels)
+        .y_label_area_size(72);
+    b
+}
+
 /// The transformed, drawable points of each series.
 fn drawable(chart: &Chart, series: &[Series]) -> Vec<Vec<(f64, f64, usize)>> {
     series
@@ -172,11 +187,7 @@ fn xy_chart(
     let root = create_root(path)?;
     let (plot, legend) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
     let e = |e| write_err(path, e);
-    let mut c = ChartBuilder::on(&plot)
-        .caption(&chart.title, ("sans-serif", 22))
-        .margin(14)
-        .x_label_area_size(46)
-        .y_label_area_size(72)
+    let mut c = frame(&plot, chart, 46)
         .build_cartesian_2d(
             ticked(x_range, chart.log_x),
             ticked(y_range.clone(), chart.log_y),
@@ -262,11 +273,7 @@ pub fn bar_chart(path: &Path, chart: &Chart, groups: &[BarGroup]) -> Result<(), 
     let root = create_root(path)?;
     let (plot, legend) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
     let e = |e| write_err(path, e);
-    let mut c = ChartBuilder::on(&plot)
-        .caption(&chart.title, ("sans-serif", 22))
-        .margin(14)
-        .x_label_area_size(70)
-        .y_label_area_size(72)
+    let mut c = frame(&plot, chart, 70)
         .build_cartesian_2d(0.0..groups.len() as f64, ticked(y_range, chart.log_y))
         .map_err(e)?;
     let ly = chart.log_y;

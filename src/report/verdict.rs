@@ -77,24 +77,13 @@ pub fn verdict_text(verdicts: &[Verdict], others: usize) -> String {
     let Some(first) = verdicts.first() else {
         return "No timed results.\n".into();
     };
-    let w_scene = verdicts
-        .iter()
-        .map(|v| v.scene.len())
-        .max()
-        .unwrap_or(5)
-        .max(5);
-    let w_set = verdicts
-        .iter()
-        .map(|v| v.ray_set.len())
-        .max()
-        .unwrap_or(4)
-        .max(4);
-    let w_idx = verdicts
-        .iter()
-        .map(|v| v.fastest().0.len())
-        .max()
-        .unwrap_or(7)
-        .max(7);
+    // Column widths: the longest entry, at least the header's.
+    let width = |len: fn(&Verdict) -> usize, header: &str| {
+        verdicts.iter().map(len).fold(header.len(), usize::max)
+    };
+    let w_scene = width(|v| v.scene.len(), "scene");
+    let w_set = width(|v| v.ray_set.len(), "rays");
+    let w_idx = width(|v| v.fastest().0.len(), "fastest");
     let mut s = format!(
         "Verdict at {} thread(s): the fastest index per scene and ray set, the others as a share of its speed\n",
         first.threads

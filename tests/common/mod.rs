@@ -3,17 +3,19 @@
 //! the whole registry).
 #![allow(dead_code)]
 
+pub mod checksum;
+pub mod cli;
 pub mod drop_one;
 pub mod far;
 pub mod grid_rays;
 
+use accelbench::geometry::Hit;
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::{Mismatch, verify_against_brute};
-use accelbench::index::IndexSpec;
+use accelbench::index::{IndexSpec, TraceIndex, build_index};
 use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::{Scene, generators};
 use glam::Vec3;
-use std::path::Path;
 
 /// Small versions of the agreement scenes every index is tested on.
 pub fn agreement_scenes() -> Vec<Scene> {
@@ -49,10 +51,9 @@ pub fn agreement_scenes() -> Vec<Scene> {
     v
 }
 
-/// The bunny from ../shared/meshes when present.
+/// The bunny from ../shared/meshes when present (otherwise says the test part is skipped).
 pub fn bunny() -> Option<Scene> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/stanford_bunny.obj");
-    p.exists().then(|| Scene::load_obj(&p).unwrap())
+    cli::shared_mesh("stanford_bunny.obj").map(|p| Scene::load_obj(&p).unwrap())
 }
 
 /// Protocol primary and incoherent rays, plus rays aimed exactly at vertices and edge midpoints
@@ -184,11 +185,15 @@ pub fn assert_mode_agrees(mode: accelbench::index::TraceMode) {
     }
 }
 
-/// Runs the `accelbench` binary with `args` from the repository root.
-pub fn accelbench(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the accelbench binary runs")
+/// Builds `spec` over `scene` with the triangle kernel `kernel`.
+pub fn build(spec: &str, scene: &Scene, kernel: TriangleKernelKind) -> Box<dyn TraceIndex> {
+    let spec: IndexSpec = spec.parse().unwrap();
+    build_index(&spec, &scene.geometry(), kernel).unwrap()
+}
+
+/// The closest hits of `rays` through `index`.
+pub fn closest(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<Option<Hit>> {
+    let mut out = vec![None; rays.len()];
+    index.closest_hits(rays, &mut out);
+    out
 }

@@ -9,26 +9,65 @@ use glam::Vec3A;
 /// involved), so rims are watertight.
 pub(super) const RIM_SLACK: f32 = 8.0 * f32::EPSILON;
 
-/// The unit axis from `from` to `to` and their distance, after checking that both points are
-/// finite, `radius` is finite and `> 0` and the points are distinct. `[shape, radius]` name the
-/// shape and its radius in the error (`["cone", "cone radius"]`).
-pub(super) fn axis_segment(
-    from: Vec3A,
-    to: Vec3A,
-    radius: f32,
-    [shape, radius_name]: [&'static str; 2],
-) -> Result<(Vec3A, f32), ShapeError> {
-    if !(from.is_finite() && to.is_finite()) {
-        return Err(ShapeError::NonFinite(shape));
+/// The axis of a capped cylinder or cone: the segment from `start` along the unit `axis` for
+/// `height`, and the `radius` of its widest disc (the cylinder's caps, the cone's base).
+///
+/// Invariants: finite `start`, unit `axis`, `height` and `radius` finite and `> 0`. The values
+/// are the kernel's `f32` values, as stored.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxialSegment {
+    pub(super) start: Vec3A,
+    pub(super) axis: Vec3A,
+    pub(super) height: f32,
+    pub(super) radius: f32,
+}
+
+impl AxialSegment {
+    /// The segment from `from` to `to`, after checking that both points are finite, `radius` is
+    /// finite and `> 0` and the points are distinct. `[shape, radius]` name the shape and its
+    /// radius in the error (`["cone", "cone radius"]`).
+    pub(super) fn new(
+        from: Vec3A,
+        to: Vec3A,
+        radius: f32,
+        [shape, radius_name]: [&'static str; 2],
+    ) -> Result<AxialSegment, ShapeError> {
+        if !(from.is_finite() && to.is_finite()) {
+            return Err(ShapeError::NonFinite(shape));
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(ShapeError::NotPositive(radius_name, radius));
+        }
+        let height = (to - from).length();
+        if !(height.is_finite() && height > 0.0) {
+            return Err(ShapeError::ZeroLength(shape));
+        }
+        Ok(AxialSegment {
+            start: from,
+            axis: (to - from) / height,
+            height,
+            radius,
+        })
     }
-    if !(radius.is_finite() && radius > 0.0) {
-        return Err(ShapeError::NotPositive(radius_name, radius));
+
+    /// The far end, `start + axis * height`.
+    pub fn end(&self) -> Vec3A {
+        self.start + self.axis * self.height
     }
-    let height = (to - from).length();
-    if !(height.is_finite() && height > 0.0) {
-        return Err(ShapeError::ZeroLength(shape));
+
+    /// The unit axis from the start to the end.
+    pub fn axis(&self) -> Vec3A {
+        self.axis
     }
-    Ok(((to - from) / height, height))
+
+    /// The distance from the start to the end.
+    pub fn height(&self) -> f32 {
+        self.height
+    }
+
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
 }
 
 /// The axial coordinate `z` of `q` (relative to the axis origin) along the unit `axis`, and its

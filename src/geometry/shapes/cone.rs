@@ -1,6 +1,6 @@
 //! Finite, capped, arbitrarily oriented right circular cones.
 
-use super::axial::{AxialRay, axis_segment, split};
+use super::axial::{AxialRay, AxialSegment, split};
 use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
 use crate::geometry::{Aabb, Ray};
 use glam::Vec3A;
@@ -12,10 +12,8 @@ use glam::Vec3A;
 /// finite and `> 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cone {
-    apex: Vec3A,
-    axis: Vec3A,
-    height: f32,
-    radius: f32,
+    /// Its axis from the apex to the base.
+    seg: AxialSegment,
     /// `(radius / height)^2`: the squared slope of the side.
     k2: f32,
     /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
@@ -25,13 +23,10 @@ pub struct Cone {
 impl Cone {
     /// The cone from its base centre to its apex.
     pub fn new(base: Vec3A, apex: Vec3A, radius: f32) -> Result<Cone, ShapeError> {
-        let (axis, height) = axis_segment(apex, base, radius, ["cone", "cone radius"])?;
-        let k = radius / height;
+        let seg = AxialSegment::new(apex, base, radius, ["cone", "cone radius"])?;
+        let k = radius / seg.height;
         let mut shape = Cone {
-            apex,
-            axis,
-            height,
-            radius,
+            seg,
             k2: k * k,
             bounds: Aabb::EMPTY,
         };
@@ -40,25 +35,11 @@ impl Cone {
     }
 
     pub fn apex(&self) -> Vec3A {
-        self.apex
+        self.seg.start
     }
 
     pub fn base(&self) -> Vec3A {
-        self.apex + self.axis * self.height
-    }
-
-    pub fn radius(&self) -> f32 {
-        self.radius
-    }
-
-    /// Unit axis from the apex to the base (as stored: the kernel's `f32` values).
-    pub fn axis(&self) -> Vec3A {
-        self.axis
-    }
-
-    /// Distance from the apex to the base (as stored).
-    pub fn height(&self) -> f32 {
-        self.height
+        self.seg.end()
     }
 
     /// The base disc's bounds grown by the apex.
@@ -67,23 +48,35 @@ impl Cone {
     }
 
     fn compute_bounds(&self) -> Aabb {
-        let b = padded_bounds(self.base(), disc_half_extent(self.axis, self.radius));
-        b.union(padded_bounds(self.apex, Vec3A::ZERO))
+        let b = padded_bounds(
+            self.base(),
+            disc_half_extent(self.seg.axis, self.seg.radius),
+        );
+        b.union(padded_bounds(self.seg.start, Vec3A::ZERO))
     }
 
     /// Outward unit normal: the base's when `p` is nearer the base plane than the side, else
     /// the side's, `radial * height - axis * radius` normalized (perpendicular to the line from
     /// the apex to the rim).
     pub fn normal_at(&self, p: Vec3A) -> Vec3A {
-        let (z, radial) = split(p - self.apex, self.axis);
+        let (z, radial) = split(p - self.seg.start, self.seg.axis);
         let r = radial.length();
         // Distance to the side line in the axial half-plane of p.
-        let to_side = (r * self.height - z * self.radius).abs() / self.height.hypot(self.radius);
-        if (z - self.height).abs() < to_side {
-            return self.axis;
+        let to_side = (r * self.seg.height - z * self.seg.radius).abs()
+            / self.seg.height.hypot(self.seg.radius);
+        if (z - self.seg.height).abs() < to_side {
+            return self.seg.axis;
         }
         let u = radial.normalize_or_zero();
-        (u * self.height - self.axis * self.radius).normalize_or_zero()
+        (u * self.seg.height - self.seg.axis * self.seg.radius).normalize_or_zero()
+    }
+}
+
+/// The axis, its height and radius ([`AxialSegment::axis`], `height`, `radius`).
+impl std::ops::Deref for Cone {
+    type Target = AxialSegment;
+    fn deref(&self) -> &AxialSegment {
+        &self.seg
     }
 }
 
@@ -100,7 +93,7 @@ impl Cone {
 /// Base: the plane `z = height` within the radius.
 #[inline]
 pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
-    let r = AxialRay::new(ray, c.apex, c.axis);
+    let r = AxialRay::new(ray, c.seg.start, c.seg.axis);
     let (oz, dz, op, dp) = (r.oz, r.dz, r.op, r.dp);
     let a = dp.dot(dp) - c.k2 * dz * dz;
     let b = op.dot(dp) - c.k2 * oz * dz;
@@ -116,8 +109,12 @@ pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
             (s0, s1) = (0.0, 0.0);
         }
     }
-    let sides = [s0, s1].map(|t| r.within_height(t, c.height));
-    first_hit([sides[0], sides[1], r.cap(c.height, c.radius)], ray, t_max)
+    let sides = [s0, s1].map(|t| r.within_height(t, c.seg.height));
+    first_hit(
+        [sides[0], sides[1], r.cap(c.seg.height, c.seg.radius)],
+        ray,
+        t_max,
+    )
 }
 
 #[cfg(test)]
@@ -195,18 +192,18 @@ mod tests {
     #[test]
     fn rim_is_watertight() {
         let c = Cone::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
-        let (u, v) = c.axis.any_orthonormal_pair();
+        let (u, v) = c.seg.axis.any_orthonormal_pair();
         let (o, w, h, r) = (
-            c.apex.as_dvec3(),
-            c.axis.as_dvec3(),
-            c.height as f64,
-            c.radius as f64,
+            c.seg.start.as_dvec3(),
+            c.seg.axis.as_dvec3(),
+            c.seg.height as f64,
+            c.seg.radius as f64,
         );
         let slipped = rim_test::slipped(
             5,
             20000,
             c.bounds(),
-            |a, _| c.base() + (u * a.cos() + v * a.sin()) * c.radius,
+            |a, _| c.base() + (u * a.cos() + v * a.sin()) * c.seg.radius,
             |ray| intersect(&c, ray, f32::INFINITY),
             |ray| {
                 rim_test::deepest(ray, |p| {

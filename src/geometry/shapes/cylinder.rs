@@ -1,6 +1,6 @@
 //! Finite, capped, arbitrarily oriented circular cylinders.
 
-use super::axial::{AxialRay, axis_segment, split};
+use super::axial::{AxialRay, AxialSegment, split};
 use super::quadratic::ball_roots;
 use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
 use crate::geometry::{Aabb, Ray};
@@ -12,10 +12,8 @@ use glam::Vec3A;
 /// Invariants: finite `base`, unit `axis`, `height` and `radius` finite and `> 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cylinder {
-    base: Vec3A,
-    axis: Vec3A,
-    height: f32,
-    radius: f32,
+    /// Its axis from the base to the top.
+    seg: AxialSegment,
     /// Cached [`Self::bounds`] (read on every kernel call by the `Geometry` contract).
     bounds: Aabb,
 }
@@ -23,12 +21,9 @@ pub struct Cylinder {
 impl Cylinder {
     /// The cylinder between the centres of its two caps.
     pub fn new(base: Vec3A, top: Vec3A, radius: f32) -> Result<Cylinder, ShapeError> {
-        let (axis, height) = axis_segment(base, top, radius, ["cylinder", "cylinder radius"])?;
+        let seg = AxialSegment::new(base, top, radius, ["cylinder", "cylinder radius"])?;
         let mut shape = Cylinder {
-            base,
-            axis,
-            height,
-            radius,
+            seg,
             bounds: Aabb::EMPTY,
         };
         shape.bounds = shape.compute_bounds();
@@ -36,25 +31,11 @@ impl Cylinder {
     }
 
     pub fn base(&self) -> Vec3A {
-        self.base
+        self.seg.start
     }
 
     pub fn top(&self) -> Vec3A {
-        self.base + self.axis * self.height
-    }
-
-    pub fn radius(&self) -> f32 {
-        self.radius
-    }
-
-    /// Unit axis from the base to the top (as stored: the kernel's `f32` values).
-    pub fn axis(&self) -> Vec3A {
-        self.axis
-    }
-
-    /// Distance from the base to the top (as stored).
-    pub fn height(&self) -> f32 {
-        self.height
+        self.seg.end()
     }
 
     /// The union of the two cap discs' bounds.
@@ -63,21 +44,21 @@ impl Cylinder {
     }
 
     fn compute_bounds(&self) -> Aabb {
-        let e = disc_half_extent(self.axis, self.radius);
-        let b = padded_bounds(self.base, e);
+        let e = disc_half_extent(self.seg.axis, self.seg.radius);
+        let b = padded_bounds(self.seg.start, e);
         b.union(padded_bounds(self.top(), e))
     }
 
     /// Outward unit normal: the cap's axis direction when `p` is nearer a cap plane than the
     /// side, else the radial direction.
     pub fn normal_at(&self, p: Vec3A) -> Vec3A {
-        let (z, radial) = split(p - self.base, self.axis);
-        let to_side = (radial.length() - self.radius).abs();
-        if z.abs().min((z - self.height).abs()) < to_side {
-            if z * 2.0 < self.height {
-                -self.axis
+        let (z, radial) = split(p - self.seg.start, self.seg.axis);
+        let to_side = (radial.length() - self.seg.radius).abs();
+        if z.abs().min((z - self.seg.height).abs()) < to_side {
+            if z * 2.0 < self.seg.height {
+                -self.seg.axis
             } else {
-                self.axis
+                self.seg.axis
             }
         } else {
             radial.normalize_or_zero()
@@ -85,14 +66,22 @@ impl Cylinder {
     }
 }
 
+/// The axis, its height and radius ([`AxialSegment::axis`], `height`, `radius`).
+impl std::ops::Deref for Cylinder {
+    type Target = AxialSegment;
+    fn deref(&self) -> &AxialSegment {
+        &self.seg
+    }
+}
+
 /// The first crossing of the side (stable quadratic on the components off the axis, valid for
 /// `0 <= z <= height`) or a cap (plane `z = 0` or `z = height`, valid within the radius).
 #[inline]
 pub fn intersect(c: &Cylinder, ray: &Ray, t_max: f32) -> Option<f32> {
-    let r = AxialRay::new(ray, c.base, c.axis);
-    let (s0, s1) = ball_roots(r.op, r.dp, c.radius).unwrap_or((f32::NAN, f32::NAN));
-    let sides = [s0, s1].map(|t| r.within_height(t, c.height));
-    let caps = [0.0, c.height].map(|z| r.cap(z, c.radius));
+    let r = AxialRay::new(ray, c.seg.start, c.seg.axis);
+    let (s0, s1) = ball_roots(r.op, r.dp, c.seg.radius).unwrap_or((f32::NAN, f32::NAN));
+    let sides = [s0, s1].map(|t| r.within_height(t, c.seg.height));
+    let caps = [0.0, c.seg.height].map(|z| r.cap(z, c.seg.radius));
     first_hit([sides[0], sides[1], caps[0], caps[1]], ray, t_max)
 }
 
@@ -170,22 +159,24 @@ mod tests {
     #[test]
     fn rims_are_watertight() {
         let c = Cylinder::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
-        let (u, v) = c.axis.any_orthonormal_pair();
-        let (b, w) = (c.base.as_dvec3(), c.axis.as_dvec3());
+        let (u, v) = c.seg.axis.any_orthonormal_pair();
+        let (b, w) = (c.seg.start.as_dvec3(), c.seg.axis.as_dvec3());
         let slipped = rim_test::slipped(
             3,
             20000,
             c.bounds(),
             |a, i| {
                 let end = if i % 2 == 0 { c.base() } else { c.top() };
-                end + (u * a.cos() + v * a.sin()) * c.radius
+                end + (u * a.cos() + v * a.sin()) * c.seg.radius
             },
             |r| intersect(&c, r, f32::INFINITY),
             |r| {
                 rim_test::deepest(r, |p| {
                     let z = (p - b).dot(w);
                     let radial = (p - b - w * z).length();
-                    (c.radius as f64 - radial).min(z).min(c.height as f64 - z)
+                    (c.seg.radius as f64 - radial)
+                        .min(z)
+                        .min(c.seg.height as f64 - z)
                 })
             },
         );

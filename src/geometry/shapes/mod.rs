@@ -18,6 +18,7 @@ pub mod obb;
 pub mod polygon;
 mod quadratic;
 
+pub use axial::AxialSegment;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
 pub use ellipsoid::Ellipsoid;

@@ -1,0 +1,112 @@
+//! The two questions a batch asks of an index, as types: [`Closest`] (the closest hit) and
+//! [`AnyHit`] (whether anything is hit), so the batch code, the last-hit cache and the registry
+//! trace both with one generic body.
+
+use super::last_hit::{self, KernelRange};
+use super::{Index, Stats};
+use crate::geometry::{Hit, Ray};
+use crate::scene::Geometry;
+
+/// A query kind: its answer per ray and the [`Index`] methods that produce it.
+pub trait Query: Send + Sync + 'static {
+    /// One ray's answer (`Option<Hit>` or `bool`).
+    type Answer: Copy + Send + Sync;
+    /// A chunk of a batch ray by ray ([`Index::closest_hits_chunk`] or `any_hits_chunk`).
+    fn chunk<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        rays: &[Ray],
+        out: &mut [Self::Answer],
+        stats: &mut [S],
+    );
+    /// A packet ([`Index::closest_hits_packet`] or `any_hits_packet`).
+    fn packet<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        rays: &[Ray],
+        out: &mut [Self::Answer],
+        stats: &mut [S],
+    );
+    /// One ray with the last-hit cache ([`last_hit::closest_hit`] or [`last_hit::any_hit`]).
+    fn last_hit<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        range: &mut KernelRange<G>,
+        ray: &Ray,
+        last: &mut Option<u32>,
+        stats: &mut S,
+    ) -> Self::Answer;
+}
+
+/// The closest hit (primitive and `t`), or `None`.
+pub enum Closest {}
+
+/// Whether any primitive is hit (shadow rays).
+pub enum AnyHit {}
+
+impl Query for Closest {
+    type Answer = Option<Hit>;
+    #[inline]
+    fn chunk<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        r: &[Ray],
+        o: &mut [Self::Answer],
+        s: &mut [S],
+    ) {
+        i.closest_hits_chunk(g, r, o, s)
+    }
+    #[inline]
+    fn packet<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        r: &[Ray],
+        o: &mut [Self::Answer],
+        s: &mut [S],
+    ) {
+        i.closest_hits_packet(g, r, o, s)
+    }
+    #[inline]
+    fn last_hit<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &mut KernelRange<G>,
+        r: &Ray,
+        l: &mut Option<u32>,
+        s: &mut S,
+    ) -> Self::Answer {
+        last_hit::closest_hit(i, g, r, l, s)
+    }
+}
+
+impl Query for AnyHit {
+    type Answer = bool;
+    #[inline]
+    fn chunk<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        r: &[Ray],
+        o: &mut [Self::Answer],
+        s: &mut [S],
+    ) {
+        i.any_hits_chunk(g, r, o, s)
+    }
+    #[inline]
+    fn packet<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        r: &[Ray],
+        o: &mut [Self::Answer],
+        s: &mut [S],
+    ) {
+        i.any_hits_packet(g, r, o, s)
+    }
+    #[inline]
+    fn last_hit<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &mut KernelRange<G>,
+        r: &Ray,
+        l: &mut Option<u32>,
+        s: &mut S,
+    ) -> Self::Answer {
+        last_hit::any_hit(i, g, r, l, s)
+    }
+}
