@@ -24,8 +24,8 @@ pub(crate) mod walk;
 pub use build::MAX_DEPTH;
 pub use params::{BvhParams, Preset, SplitMethod};
 
-use super::{BuildError, Index, IndexInfo, Stats};
-use crate::geometry::{Aabb, Hit, Ray};
+use super::{BuildError, Index, IndexInfo};
+use crate::geometry::Aabb;
 use crate::scene::Geometry;
 use node::{Child, Node};
 use prim_ref::PrimRef;
@@ -86,40 +86,7 @@ impl Index for Bvh {
         })
     }
 
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        walk::closest_hit(&self.tree(), geom, ray, stats)
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        walk::any_hit(&self.tree(), geom, ray, stats)
-    }
-
-    fn closest_hits_packet<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        rays: &[Ray],
-        out: &mut [Option<Hit>],
-        stats: &mut [S],
-    ) {
-        packet::closest_hits(&self.tree(), geom, rays, out, stats)
-    }
-
-    fn any_hits_packet<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        rays: &[Ray],
-        out: &mut [bool],
-        stats: &mut [S],
-    ) {
-        packet::any_hits(&self.tree(), geom, rays, out, stats)
-    }
+    walk::tree_queries!();
 
     fn info(&self) -> IndexInfo {
         let memory_bytes =

@@ -22,7 +22,7 @@
 use super::node::Child;
 use super::slab::{self, SlabRay};
 use super::traverse::{STACK, Tree};
-use super::walk::Top;
+use super::walk::{Rooted, Top};
 use crate::geometry::{ClosestHit, Hit, Ray};
 use crate::index::stack::Stack;
 use crate::index::{MAX_PACKET, Stats};
@@ -30,40 +30,27 @@ use crate::scene::Geometry;
 
 /// A box tree as the packet walk sees it: nodes of up to `W` children, a stack bound of `N`
 /// entries (at most `W - 1` pushes per level).
-pub(crate) trait PacketTree<const W: usize, const N: usize> {
-    /// The root, its box and the leaves.
-    fn top(&self) -> Top<'_>;
+pub(crate) trait PacketTree<const W: usize, const N: usize>: Rooted {
     /// One ray's slab test of inner node `node`'s children against `[ray.t_min, t_max]`,
-    /// exactly the single-ray node step's test and box-test count: the mask of the hit
-    /// children (bit `i` for child `i`) and their entries (meaningful where hit).
-    fn hit<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-    ) -> (u32, [f32; W]);
+    /// exactly the single-ray node step's test: the mask of the hit children (bit `i` for
+    /// child `i`) and their entries (meaningful where hit).
+    fn hit<const SAFE: bool>(&self, node: u32, ray: &SlabRay, t_max: f32) -> (u32, [f32; W]);
+    /// Box tests of one ray at inner node `node`, as the single-ray step counts them.
+    fn boxes(&self, node: u32) -> u32;
     /// Child `i` of inner node `node`.
     fn child(&self, node: u32, i: usize) -> Child;
 }
 
 impl PacketTree<2, STACK> for Tree<'_> {
     #[inline(always)]
-    fn top(&self) -> Top<'_> {
-        self.top
+    fn hit<const SAFE: bool>(&self, node: u32, ray: &SlabRay, t_max: f32) -> (u32, [f32; 2]) {
+        let (hit, enter) = slab::hit_children::<SAFE>(&self.nodes[node as usize], ray, t_max);
+        (hit, [enter.x, enter.y])
     }
 
     #[inline(always)]
-    fn hit<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-    ) -> (u32, [f32; 2]) {
-        stats.box_tests(2);
-        let (hit, enter) = slab::hit_children::<SAFE>(&self.nodes[node as usize], ray, t_max);
-        (hit, [enter.x, enter.y])
+    fn boxes(&self, _node: u32) -> u32 {
+        2
     }
 
     #[inline(always)]
@@ -105,10 +92,11 @@ fn test_children<const W: usize, const N: usize, T: PacketTree<W, N>, S: Stats>(
     let mut entries = [[0.0; MAX_PACKET]; W];
     for k in bits(active) {
         let lane = &lanes[k];
+        stats[k].box_tests(tree.boxes(node));
         let (hit, enter) = if lane.finite {
-            tree.hit::<false, S>(node, &lane.slab, t_max(k), &mut stats[k])
+            tree.hit::<false>(node, &lane.slab, t_max(k))
         } else {
-            tree.hit::<true, S>(node, &lane.slab, t_max(k), &mut stats[k])
+            tree.hit::<true>(node, &lane.slab, t_max(k))
         };
         for c in bits(hit) {
             masks[c] |= 1 << k;

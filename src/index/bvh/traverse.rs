@@ -8,46 +8,29 @@
 
 use super::build::MAX_DEPTH;
 use super::node::{Child, Node};
-use super::slab::{self, SlabRay};
-use super::walk::{BoxTree, Top};
+use super::slab;
+use super::walk::{self, BoxTree, Entry, Step};
 use crate::index::Stats;
-use crate::index::stack::Stack;
 
 /// Stack capacity of the binary tree's traversal.
 pub const STACK: usize = MAX_DEPTH as usize;
 
 /// The tree as the queries see it: the root's box and reference, the inner nodes, and the
 /// primitive ids in leaf order.
-#[derive(Clone, Copy)]
-pub struct Tree<'a> {
-    pub top: Top<'a>,
-    pub nodes: &'a [Node],
-}
+pub type Tree<'a> = walk::Tree<'a, Node>;
 
 impl BoxTree<STACK> for Tree<'_> {
     #[inline(always)]
-    fn top(&self) -> Top<'_> {
-        self.top
-    }
-
-    #[inline(always)]
-    fn closest_step<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-        stack: &mut Stack<(Child, f32), STACK>,
-    ) -> Option<Child> {
-        let node = &self.nodes[node as usize];
+    fn closest<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
+        let node = &self.nodes[s.node as usize];
         let [a, b] = node.children;
-        stats.box_tests(2);
-        let (hit, enter) = slab::hit_children::<SAFE>(node, ray, t_max);
+        s.stats.box_tests(2);
+        let (hit, enter) = slab::hit_children::<SAFE>(node, s.ray, s.t_max);
         match hit {
             0b11 => {
                 let (ea, eb) = (enter.x, enter.y);
                 let (near, far, far_entry) = if eb < ea { (b, a, ea) } else { (a, b, eb) };
-                stack.push((far, far_entry));
+                s.stack.push((far, far_entry));
                 Some(near)
             }
             0b01 => Some(a),
@@ -57,20 +40,13 @@ impl BoxTree<STACK> for Tree<'_> {
     }
 
     #[inline(always)]
-    fn any_step<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-        stack: &mut Stack<Child, STACK>,
-    ) -> Option<Child> {
-        let node = &self.nodes[node as usize];
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Child, STACK>) -> Option<Child> {
+        let node = &self.nodes[s.node as usize];
         let [a, b] = node.children;
-        stats.box_tests(2);
-        match slab::hit_children::<SAFE>(node, ray, t_max).0 {
+        s.stats.box_tests(2);
+        match slab::hit_children::<SAFE>(node, s.ray, s.t_max).0 {
             0b11 => {
-                stack.push(b);
+                s.stack.push(b);
                 Some(a)
             }
             0b01 => Some(a),

@@ -31,31 +31,96 @@ pub struct Top<'a> {
     pub leaves: Leaves<'a>,
 }
 
+/// A tree as the queries see it: [`Top`] and the inner nodes (`N`: the layout's node type).
+#[derive(Clone, Copy)]
+pub struct Tree<'a, N> {
+    pub top: Top<'a>,
+    pub nodes: &'a [N],
+}
+
+/// What the loops read of every tree: its root, box and leaves.
+pub trait Rooted {
+    fn top(&self) -> Top<'_>;
+}
+
+impl<N> Rooted for Tree<'_, N> {
+    #[inline(always)]
+    fn top(&self) -> Top<'_> {
+        self.top
+    }
+}
+
+/// A closest-hit stack entry: a child and the ray's entry into its box.
+pub type Entry = (Child, f32);
+
+/// One node step's arguments: inner node `node`, the ray's slab constants, the end `t_max` of
+/// the interval `[ray.t_min, t_max]` tested, the counters and the stack (items `T`, at most
+/// `N`).
+pub struct Step<'a, S, T: Copy, const N: usize> {
+    pub node: u32,
+    pub ray: &'a SlabRay,
+    pub t_max: f32,
+    pub stats: &'a mut S,
+    pub stack: &'a mut Stack<T, N>,
+}
+
 /// A tree of boxes whose inner nodes the loop visits by index and whose leaves are
 /// [`Leaves`]. `N` bounds the entries the node steps can leave on the stack.
-pub trait BoxTree<const N: usize> {
-    /// The root, its box and the leaves.
-    fn top(&self) -> Top<'_>;
-    /// Closest-hit step at inner node `node`: pushes the hit children but the nearest with their
-    /// entries, farthest first, and returns the nearest; `None` when no child is hit.
-    fn closest_step<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-        stack: &mut Stack<(Child, f32), N>,
-    ) -> Option<Child>;
+pub trait BoxTree<const N: usize>: Rooted {
+    /// Closest-hit step: pushes the hit children but the nearest with their entries, farthest
+    /// first, and returns the nearest; `None` when no child is hit.
+    fn closest<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, N>) -> Option<Child>;
     /// Any-hit step: pushes the hit children but one and returns that one.
-    fn any_step<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-        stack: &mut Stack<Child, N>,
-    ) -> Option<Child>;
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Child, N>) -> Option<Child>;
 }
+
+/// The four ray queries of [`crate::index::Index`] for a type whose `tree()` is a [`Tree`]
+/// that is a [`BoxTree`] and a [`super::packet::PacketTree`]: this module's loops and the
+/// packet walk's.
+macro_rules! tree_queries {
+    () => {
+        #[inline]
+        fn closest_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
+            &self,
+            geom: &G,
+            ray: &$crate::geometry::Ray,
+            stats: &mut S,
+        ) -> Option<$crate::geometry::Hit> {
+            $crate::index::bvh::walk::closest_hit(&self.tree(), geom, ray, stats)
+        }
+
+        #[inline]
+        fn any_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
+            &self,
+            geom: &G,
+            ray: &$crate::geometry::Ray,
+            stats: &mut S,
+        ) -> bool {
+            $crate::index::bvh::walk::any_hit(&self.tree(), geom, ray, stats)
+        }
+
+        fn closest_hits_packet<G: $crate::scene::Geometry, S: $crate::index::Stats>(
+            &self,
+            geom: &G,
+            rays: &[$crate::geometry::Ray],
+            out: &mut [Option<$crate::geometry::Hit>],
+            stats: &mut [S],
+        ) {
+            $crate::index::bvh::packet::closest_hits(&self.tree(), geom, rays, out, stats)
+        }
+
+        fn any_hits_packet<G: $crate::scene::Geometry, S: $crate::index::Stats>(
+            &self,
+            geom: &G,
+            rays: &[$crate::geometry::Ray],
+            out: &mut [bool],
+            stats: &mut [S],
+        ) {
+            $crate::index::bvh::packet::any_hits(&self.tree(), geom, rays, out, stats)
+        }
+    };
+}
+pub(crate) use tree_queries;
 
 /// Asks the cache for every line of `*item` ahead of its use (x86_64; a no-op elsewhere). Reads
 /// nothing and cannot fault, so any address is allowed.
@@ -103,16 +168,20 @@ fn closest<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stat
 ) -> Option<Hit> {
     let slab_ray = SlabRay::new(ray);
     let mut best = ClosestHit::new(ray.t_max);
-    let mut stack = Stack::<(Child, f32), N>::new();
+    let mut stack = Stack::<Entry, N>::new();
     let top = tree.top();
     let mut at = top.root;
     loop {
         stats.node_visit();
         if at.is_leaf() {
             top.leaves.closest(at, geom, ray, &mut best, stats);
-        } else if let Some(next) =
-            tree.closest_step::<SAFE, S>(at.index, &slab_ray, best.t(), stats, &mut stack)
-        {
+        } else if let Some(next) = tree.closest::<SAFE, S>(Step {
+            node: at.index,
+            ray: &slab_ray,
+            t_max: best.t(),
+            stats: &mut *stats,
+            stack: &mut stack,
+        }) {
             at = next;
             continue;
         }
@@ -170,9 +239,13 @@ fn any<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
             if top.leaves.any(at, geom, ray, stats) {
                 return true;
             }
-        } else if let Some(next) =
-            tree.any_step::<SAFE, S>(at.index, &slab_ray, ray.t_max, stats, &mut stack)
-        {
+        } else if let Some(next) = tree.any::<SAFE, S>(Step {
+            node: at.index,
+            ray: &slab_ray,
+            t_max: ray.t_max,
+            stats: &mut *stats,
+            stack: &mut stack,
+        }) {
             at = next;
             continue;
         }

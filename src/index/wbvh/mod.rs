@@ -14,11 +14,10 @@ mod packet;
 mod traverse;
 
 use super::bvh::BvhParams;
-use super::{BuildError, Bvh, Index, IndexInfo, Stats};
-use crate::geometry::{Aabb, Hit, Ray};
+use super::{BuildError, Bvh, Index, IndexInfo};
+use crate::geometry::Aabb;
 use crate::index::bvh::leaves::{BLOCK_LANES, LeafStore};
 use crate::index::bvh::node::Child;
-use crate::index::bvh::packet as packet_walk;
 use crate::index::bvh::walk;
 use crate::scene::Geometry;
 use node::{WideNode, collapse};
@@ -76,40 +75,7 @@ impl<const C: usize> Index for WideBvh<C> {
         })
     }
 
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        walk::closest_hit(&self.tree(), geom, ray, stats)
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        walk::any_hit(&self.tree(), geom, ray, stats)
-    }
-
-    fn closest_hits_packet<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        rays: &[Ray],
-        out: &mut [Option<Hit>],
-        stats: &mut [S],
-    ) {
-        packet_walk::closest_hits(&self.tree(), geom, rays, out, stats)
-    }
-
-    fn any_hits_packet<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        rays: &[Ray],
-        out: &mut [bool],
-        stats: &mut [S],
-    ) {
-        packet_walk::any_hits(&self.tree(), geom, rays, out, stats)
-    }
+    walk::tree_queries!();
 
     fn info(&self) -> IndexInfo {
         let memory_bytes = size_of::<Aabb>()

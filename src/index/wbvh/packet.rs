@@ -6,29 +6,19 @@
 //! ([`super::node::WideNode::valid`]).
 
 use super::traverse::{STACK, Tree};
-use crate::index::Stats;
 use crate::index::bvh::node::Child;
 use crate::index::bvh::packet::PacketTree;
 use crate::index::bvh::slab::SlabRay;
-use crate::index::bvh::walk::Top;
 
 impl<const C: usize> PacketTree<8, STACK> for Tree<'_, C> {
     #[inline(always)]
-    fn top(&self) -> Top<'_> {
-        self.top
+    fn hit<const SAFE: bool>(&self, node: u32, ray: &SlabRay, t_max: f32) -> (u32, [f32; 8]) {
+        self.nodes[node as usize].hit::<SAFE>(ray, t_max)
     }
 
     #[inline(always)]
-    fn hit<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-    ) -> (u32, [f32; 8]) {
-        let node = &self.nodes[node as usize];
-        stats.box_tests(node.valid().count_ones());
-        node.hit::<SAFE>(ray, t_max)
+    fn boxes(&self, node: u32) -> u32 {
+        self.nodes[node as usize].valid().count_ones()
     }
 
     #[inline(always)]

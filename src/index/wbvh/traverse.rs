@@ -2,9 +2,10 @@
 //!
 //! Every chunk of four children's boxes is tested in one SIMD slab pass ([`hit_boxes4`], the
 //! binary BVH's arithmetic, so conservative and monotone exactly like the scalar
-//! [`crate::geometry::Aabb::ray_interval`]). Closest hit sorts the hit children by entry
-//! distance, pushes all but the nearest farthest first and visits the nearest; any-hit pushes
-//! all but one.
+//! [`crate::geometry::Aabb::ray_interval`]). Closest hit visits the nearest hit child and
+//! pushes the others farthest first: one hit child is visited at once, two are ordered by one
+//! comparison, more by an insertion sort of integer keys (entry bits and lane, so items move in
+//! one register and the sort's stores forward to its loads); any-hit pushes all but one.
 //!
 //! Node and leaf loads dominate the time (they miss the caches on incoherent rays), so a step
 //! asks for the node's reference line along with its box lines (the references are read only
@@ -18,19 +19,14 @@ use super::node::WideNode;
 use crate::index::Stats;
 use crate::index::bvh::MAX_DEPTH;
 use crate::index::bvh::node::Child;
-use crate::index::bvh::slab::SlabRay;
-use crate::index::bvh::walk::{BoxTree, Top, prefetch};
+use crate::index::bvh::walk::{self, BoxTree, Entry, Step, prefetch};
 use crate::index::stack::Stack;
 
 /// Stack capacity of the wide trees' traversal.
 pub const STACK: usize = 7 * MAX_DEPTH as usize;
 
 /// The tree as the queries see it.
-#[derive(Clone, Copy)]
-pub struct Tree<'a, const C: usize> {
-    pub top: Top<'a>,
-    pub nodes: &'a [WideNode<C>],
-}
+pub type Tree<'a, const C: usize> = walk::Tree<'a, WideNode<C>>;
 
 impl<const C: usize> Tree<'_, C> {
     /// Node `index`, its reference line prefetched.
@@ -52,61 +48,74 @@ impl<const C: usize> Tree<'_, C> {
     }
 }
 
+impl<const C: usize> Tree<'_, C> {
+    /// Pushes a hit child with its entry, its memory asked for.
+    #[inline(always)]
+    fn push(&self, child: Child, entry: f32, stack: &mut Stack<Entry, STACK>) {
+        self.prefetch(child);
+        stack.push((child, entry));
+    }
+}
+
+/// The bits of a non-NaN `f32` as an integer of the same order (`-0.0` just below `+0.0`).
+#[inline(always)]
+fn order_bits(x: f32) -> u32 {
+    let b = x.to_bits();
+    if b >> 31 == 1 { !b } else { b | 1 << 31 }
+}
+
 impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
     #[inline(always)]
-    fn top(&self) -> Top<'_> {
-        self.top
-    }
-
-    #[inline(always)]
-    fn closest_step<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-        stack: &mut Stack<(Child, f32), STACK>,
-    ) -> Option<Child> {
-        let node = self.node(node);
-        stats.box_tests(node.valid().count_ones());
-        let (mut mask, enter) = node.hit::<SAFE>(ray, t_max);
+    fn closest<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
+        let node = self.node(s.node);
+        s.stats.box_tests(node.valid().count_ones());
+        let (mask, enter) = node.hit::<SAFE>(s.ray, s.t_max);
         if mask == 0 {
             return None;
         }
-        // Hit children sorted by entry, farthest first (insertion sort, at most 8).
-        let mut hit = [(Child::default(), 0.0f32); 8];
+        let first = mask.trailing_zeros() as usize;
+        let rest = mask & (mask - 1);
+        if rest == 0 {
+            return Some(node.child(first));
+        }
+        if rest & (rest - 1) == 0 {
+            let second = rest.trailing_zeros() as usize;
+            let (near, far) = match enter[second] < enter[first] {
+                true => (second, first),
+                false => (first, second),
+            };
+            self.push(node.child(far), enter[far], s.stack);
+            return Some(node.child(near));
+        }
+        // Three or more: lanes sorted by entry, farthest first, as integer keys (the entry's
+        // order-preserving bits above the lane), an insertion sort of at most 8.
+        let mut keys = [0u64; 8];
         let mut n = 0usize;
+        let mut mask = mask;
         while mask != 0 {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let item = (node.child(i), enter[i]);
+            let key = u64::from(order_bits(enter[i])) << 32 | i as u64;
             let mut j = n;
-            while j > 0 && hit[j - 1].1 < item.1 {
-                hit[j] = hit[j - 1];
+            while j > 0 && keys[j - 1] < key {
+                keys[j] = keys[j - 1];
                 j -= 1;
             }
-            hit[j] = item;
+            keys[j] = key;
             n += 1;
         }
-        for &item in &hit[..n - 1] {
-            self.prefetch(item.0);
-            stack.push(item);
+        for &key in &keys[..n - 1] {
+            let i = (key & 7) as usize;
+            self.push(node.child(i), enter[i], s.stack);
         }
-        Some(hit[n - 1].0)
+        Some(node.child((keys[n - 1] & 7) as usize))
     }
 
     #[inline(always)]
-    fn any_step<const SAFE: bool, S: Stats>(
-        &self,
-        node: u32,
-        ray: &SlabRay,
-        t_max: f32,
-        stats: &mut S,
-        stack: &mut Stack<Child, STACK>,
-    ) -> Option<Child> {
-        let node = self.node(node);
-        stats.box_tests(node.valid().count_ones());
-        let (mut mask, _) = node.hit::<SAFE>(ray, t_max);
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Child, STACK>) -> Option<Child> {
+        let node = self.node(s.node);
+        s.stats.box_tests(node.valid().count_ones());
+        let (mut mask, _) = node.hit::<SAFE>(s.ray, s.t_max);
         if mask == 0 {
             return None;
         }
@@ -114,7 +123,7 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
             self.prefetch(node.child(i));
-            stack.push(node.child(i));
+            s.stack.push(node.child(i));
         }
         let i = mask.trailing_zeros() as usize;
         Some(node.child(i))

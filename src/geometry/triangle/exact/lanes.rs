@@ -49,9 +49,25 @@ fn max(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
-/// The lane form (see the module doc and [`crate::geometry::triangle::lanes`]).
+/// The lane form (see the module doc and [`crate::geometry::triangle::lanes`]): one AVX pass
+/// ([`super::lanes_avx`]) when built with AVX, else [`portable`].
 #[inline(always)]
 pub fn intersect_lanes(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    {
+        super::lanes_avx::intersect_lanes(tris, ray)
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    {
+        portable(tris, ray)
+    }
+}
+
+/// The lane form in plain Rust, a branch per lane (targets without AVX; with AVX the tests
+/// compare the AVX pass with it).
+#[cfg_attr(all(target_arch = "x86_64", target_feature = "avx"), allow(dead_code))]
+#[inline(always)]
+pub fn portable(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
     let o = [0, 1, 2].map(|k| ray.origin[k] as f64);
     let d = [0, 1, 2].map(|k| ray.dir[k] as f64);
     let (a, b, c) = (rel(tris, 0, o), rel(tris, 1, o), rel(tris, 2, o));
@@ -154,5 +170,46 @@ mod tests {
             hits > 10_000 && misses > 10_000 && undecided > 100,
             "{hits} {misses} {undecided}"
         );
+    }
+
+    /// The AVX pass answers exactly what the portable form answers (hits, undecided lanes and
+    /// `t` bits), including rays in a triangle's plane, through corners and from far away.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    #[test]
+    fn the_avx_pass_equals_the_portable_form() {
+        let mut rng = Rng(0x0bad_cafe_f00d_d00d);
+        let mut seen = LaneHits {
+            hit: 0,
+            scalar: 0,
+            t: [0.0; 4],
+        };
+        for round in 0..40_000 {
+            let scale = [1.0, 1e3, 1e-3, 1e6][round % 4];
+            let tris: [Triangle; 4] = std::array::from_fn(|_| {
+                Triangle::new(rng.point(scale), rng.point(scale), rng.point(scale))
+            });
+            let lanes = TriangleLanes::new(&tris[..1 + round % 4]);
+            let o = match round % 7 {
+                // In the plane of the first triangle: edge functions near zero.
+                0 => tris[0].v[0] * 2.0 - tris[0].v[1],
+                _ => rng.point(scale * 8.0),
+            };
+            let target = match round % 3 {
+                0 => tris[0].v[round % 3],
+                _ => tris[0].v[0] * 0.25 + tris[0].v[1] * 0.25 + tris[0].v[2] * 0.5,
+            };
+            let t_min = [0.0, -1.0, 0.5][round % 3];
+            let Ok(ray) = Ray::new(o.into(), Vec3::from(target - o), t_min, 1.5) else {
+                continue;
+            };
+            let got = intersect_lanes(&lanes, &ray);
+            let want = portable(&lanes, &ray);
+            assert_eq!(got.hit, want.hit, "{ray:?} {lanes:?}");
+            assert_eq!(got.scalar, want.scalar, "{ray:?} {lanes:?}");
+            assert_eq!(got.t.map(f32::to_bits), want.t.map(f32::to_bits), "{ray:?}");
+            seen.hit |= want.hit;
+            seen.scalar |= want.scalar;
+        }
+        assert_eq!((seen.hit, seen.scalar), (0b1111, 0b1111));
     }
 }

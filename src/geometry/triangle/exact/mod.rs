@@ -34,6 +34,8 @@
 
 pub mod expansion;
 mod lanes;
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+mod lanes_avx;
 
 use super::lanes::{LaneHits, TriangleLanes};
 use super::{Triangle, TriangleKernel, in_interval};
