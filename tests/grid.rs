@@ -6,10 +6,10 @@ mod common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::index::{
-    BuildError, Counters, Grid, GridParams, Index, IndexSpec, build_index, build_index_on,
+    Counters, Grid, GridParams, Index, IndexSpec, build_index, build_index_on,
 };
 use accelbench::scene::{Geometry, Scene, Triangles, generators};
-use common::{agreement_rays, assert_agrees};
+use common::{accelbench, agreement_rays, assert_agrees};
 use glam::{Vec3, Vec3A};
 use std::collections::HashSet;
 
@@ -184,10 +184,7 @@ fn prim_tests_equal_distinct_primitives_of_visited_cells() {
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    let geom = generators::generate("soup", 100, 1).unwrap().geometry();
-    let build =
-        |s: &str| build_index(&s.parse()?, &geom, TriangleKernelKind::Watertight).map(|_| ());
-    for bad in [
+    let build = common::assert_params_rejected(&[
         "grid:res=[0,4,4]",
         "grid:res=[100000,100000,100000]",
         "grid:res=[4,4]",
@@ -197,20 +194,9 @@ fn bad_parameters_are_typed_errors() {
         "grid:lambda=inf",
         "grid:lambda=2,res=[4,4,4]",
         "grid:cells=4",
-    ] {
-        let err = build(bad).unwrap_err();
-        assert!(matches!(err, BuildError::Params { .. }), "{bad}: {err}");
-    }
+    ]);
     assert!(build("grid:res=[4,4,4]").is_ok());
     assert!(build("grid:lambda=0.01").is_ok());
-}
-
-fn accelbench(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the accelbench binary runs")
 }
 
 #[test]

@@ -125,19 +125,13 @@ fn each_primitive_is_tested_at_most_once_per_ray() {
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    let geom = generators::generate("soup", 100, 1).unwrap().geometry();
-    let build =
-        |s: &str| build_index(&s.parse()?, &geom, TriangleKernelKind::Watertight).map(|_| ());
-    for bad in [
+    let build = common::assert_params_rejected(&[
         "grid2:lambda=0",
         "grid2:top_lambda=-1",
         "grid2:lambda=nan",
         "grid2:top_lambda=inf",
         "grid2:res=[4,4,4]",
-    ] {
-        let err = build(bad).unwrap_err();
-        assert!(matches!(err, BuildError::Params { .. }), "{bad}: {err}");
-    }
+    ]);
     let empty = Scene::from_triangles("empty", vec![]);
     assert!(matches!(
         build_index(
@@ -149,4 +143,42 @@ fn bad_parameters_are_typed_errors() {
         Some(BuildError::EmptyScene)
     ));
     assert!(build("grid2:top_lambda=0.001,lambda=20").is_ok());
+}
+
+/// `accelbench sweep grid2` writes one CSV row per (top_lambda, lambda) point and both charts; a
+/// bad density exits non-zero and names the option.
+#[test]
+fn cli_sweep_grid2_writes_csv_and_charts() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let o = common::accelbench(&[
+        "sweep",
+        "grid2",
+        "--scene",
+        "soup:n=1000",
+        "--size",
+        "24",
+        "--repeats",
+        "1",
+        "--top-lambda",
+        "0.05,0.5",
+        "--lambda",
+        "1,4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
+    assert!(
+        csv.lines()
+            .any(|l| l.contains("top_lambda=0.5") && l.contains("lambda=4")),
+        "{csv}"
+    );
+    for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    let bad = common::accelbench(&["sweep", "grid2", "--scene", "soup", "--lambda=0"]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("lambda"));
 }

@@ -5,8 +5,8 @@
 use super::{parse_threads, with_threads};
 use crate::geometry::{Aabb, Ray, TriangleKernelKind};
 use crate::harness::sweep::{SweepPoint, SweepRow, SweepSetup, run_sweep};
-use crate::index::OctreeParams;
 use crate::index::grid::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution, resolution};
+use crate::index::{Grid2Params, OctreeParams};
 use crate::rays::{RaySetKind, ray_set};
 use crate::report::sweep_report::{SweepPlot, write_sweep};
 use crate::scene::{Scene, load_scene};
@@ -24,6 +24,8 @@ enum SweepTarget {
     /// Grid resolution: explicit cells along the longest axis (--res) and cube-root heuristic
     /// densities (--lambda), against cells along the longest axis.
     Grid(GridSweepArgs),
+    /// Two-level grid densities: one line per --top-lambda, against the inner --lambda.
+    Grid2(Grid2SweepArgs),
     /// Octree leaf size and depth: one line per --max-depth, against --max-prims.
     Octree(OctreeSweepArgs),
 }
@@ -70,6 +72,19 @@ pub struct GridSweepArgs {
 }
 
 #[derive(Debug, clap::Args)]
+pub struct Grid2SweepArgs {
+    #[command(flatten)]
+    common: CommonSweepArgs,
+    /// Top-grid densities (cells per primitive of the scene), comma-separated (one line each).
+    #[arg(long, value_delimiter = ',', default_value = "0.0078125,0.015625,0.0625",
+          value_parser = parse_lambda)]
+    top_lambda: Vec<f32>,
+    /// Densities of each top cell's own grid (cells per primitive of that cell), comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,4,8", value_parser = parse_lambda)]
+    lambda: Vec<f32>,
+}
+
+#[derive(Debug, clap::Args)]
 pub struct OctreeSweepArgs {
     #[command(flatten)]
     common: CommonSweepArgs,
@@ -97,6 +112,7 @@ fn parse_lambda(s: &str) -> Result<f32, String> {
 pub fn run(a: SweepArgs) -> anyhow::Result<()> {
     match a.target {
         SweepTarget::Grid(g) => run_grid(g),
+        SweepTarget::Grid2(g) => run_grid2(g),
         SweepTarget::Octree(o) => run_octree(o),
     }
 }
@@ -274,6 +290,41 @@ fn summarize(rows: &[SweepRow], default: &str) {
             h.prim_tests_per_ray
         );
     }
+}
+
+fn run_grid2(a: Grid2SweepArgs) -> anyhow::Result<()> {
+    let p = prepare(&a.common, "grid2")?;
+    let d = Grid2Params::default();
+    let mut points: Vec<SweepPoint> = Vec::new();
+    for &top in &a.top_lambda {
+        for &l in &a.lambda {
+            points.push(SweepPoint {
+                series: format!("top_lambda={top}"),
+                x: l as f64,
+                spec: format!("grid2:top_lambda={top},lambda={l}").parse()?,
+            });
+        }
+    }
+    let plot = SweepPlot {
+        title: format!("grid2 on {}, {} rays", p.scene.name, a.common.rays.name()),
+        x_label: "inner cells per primitive (lambda)".into(),
+        log_x: true,
+        marker: Some((
+            d.lambda as f64,
+            format!("default (top_lambda={}, lambda={})", d.top_lambda, d.lambda),
+        )),
+    };
+    let default: crate::index::IndexSpec =
+        format!("grid2:top_lambda={},lambda={}", d.top_lambda, d.lambda).parse()?;
+    sweep_and_write(
+        &p,
+        &a.common,
+        "grid2",
+        "cells",
+        &points,
+        &plot,
+        &default.to_string(),
+    )
 }
 
 fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {

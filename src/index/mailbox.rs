@@ -5,7 +5,13 @@
 //! fresh stamp; a primitive is tested only when its stamp differs, and is then stamped. Nothing
 //! is allocated per ray: the array grows only when a thread first meets a larger scene, and is
 //! cleared only when the counter wraps (every 2^32 - 1 queries).
+//!
+//! The structures that hand a ray's cells to a visitor ([`CellWalk`]: grid, two-level grid,
+//! octree) share their closest-hit and any-hit queries here.
 
+use super::Stats;
+use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::scene::Geometry;
 use std::cell::RefCell;
 
 /// The stamps of one thread.
@@ -60,6 +66,101 @@ pub fn with_mailbox<R>(len: usize, f: impl FnOnce(&mut Mailbox) -> R) -> R {
         f(&mut m)
     })
 }
+
+/// A structure that hands a ray's cells (grid cells, octree leaves) to a visitor front to back.
+///
+/// Contract of [`CellWalk::for_each_cell`]: `visit` receives the primitive ids of each cell the
+/// ray meets, in increasing order of the cells' `t` intervals, and returns the current cutoff
+/// (the best `t`, `ray.t_max` while nothing is found, or `-inf` to stop at once); the walk stops
+/// after a cell whose exit parameter is `>=` the cutoff, or when the ray leaves the structure.
+/// Every primitive whose hit at `t <= cutoff` could beat the best so far lies in a cell handed
+/// over before the walk stops (each implementation documents why). A cell may be left out when
+/// none of its primitives can hit within `[t_min, cutoff]`.
+pub trait CellWalk {
+    fn for_each_cell<S: Stats>(
+        &self,
+        ray: &Ray,
+        stats: &mut S,
+        visit: impl FnMut(&[u32], &mut S) -> f32,
+    );
+}
+
+/// The closest hit along `walk`: each primitive tested at most once (the mailbox), through the
+/// shared kernel ([`Geometry::intersect`]), ties at equal `t` to the lowest id
+/// ([`ClosestHit::offer`]).
+#[inline]
+pub fn closest_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
+    walk: &W,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> Option<Hit> {
+    with_mailbox(geom.len(), |mb| {
+        let mut best = ClosestHit::new(ray.t_max);
+        walk.for_each_cell(ray, stats, |prims, stats| {
+            for &prim in prims {
+                if mb.first_visit(prim) {
+                    stats.prim_test();
+                    if let Some(t) = geom.intersect(prim, ray, best.t()) {
+                        best.offer(t, prim);
+                    }
+                }
+            }
+            best.t()
+        });
+        best.get()
+    })
+}
+
+/// Whether any primitive along `walk` is hit within `[t_min, t_max]` (stops at the first).
+#[inline]
+pub fn any_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
+    walk: &W,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> bool {
+    with_mailbox(geom.len(), |mb| {
+        let mut found = false;
+        walk.for_each_cell(ray, stats, |prims, stats| {
+            found = prims.iter().any(|&p| {
+                mb.first_visit(p) && {
+                    stats.prim_test();
+                    geom.intersect(p, ray, ray.t_max).is_some()
+                }
+            });
+            if found { f32::NEG_INFINITY } else { ray.t_max }
+        });
+        found
+    })
+}
+
+/// The `closest_hit` and `any_hit` methods of an [`Index`](crate::index::Index) impl for a type
+/// that is a [`CellWalk`]: the shared mailboxed queries above.
+macro_rules! cell_walk_queries {
+    () => {
+        #[inline]
+        fn closest_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
+            &self,
+            geom: &G,
+            ray: &$crate::geometry::Ray,
+            stats: &mut S,
+        ) -> Option<$crate::geometry::Hit> {
+            $crate::index::mailbox::closest_hit_in_cells(self, geom, ray, stats)
+        }
+
+        #[inline]
+        fn any_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
+            &self,
+            geom: &G,
+            ray: &$crate::geometry::Ray,
+            stats: &mut S,
+        ) -> bool {
+            $crate::index::mailbox::any_hit_in_cells(self, geom, ray, stats)
+        }
+    };
+}
+pub(crate) use cell_walk_queries;
 
 #[cfg(test)]
 mod tests {

@@ -197,3 +197,24 @@ pub fn closest(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<Option<Hit>> {
     index.closest_hits(rays, &mut out);
     out
 }
+
+/// Asserts that every spec in `specs` fails to build on a small triangle soup with a typed
+/// parameter error ([`accelbench::index::BuildError::Params`]); returns a builder for further
+/// checks on the same scene.
+pub fn assert_params_rejected(
+    specs: &[&str],
+) -> impl Fn(&str) -> Result<(), accelbench::index::BuildError> {
+    let geom = generators::generate("soup", 100, 1).unwrap().geometry();
+    let build = move |s: &str| {
+        accelbench::index::build_index(&s.parse()?, &geom, TriangleKernelKind::Watertight)
+            .map(|_| ())
+    };
+    for bad in specs {
+        let err = build(bad).unwrap_err();
+        assert!(
+            matches!(err, accelbench::index::BuildError::Params { .. }),
+            "{bad}: {err}"
+        );
+    }
+    build
+}

@@ -16,9 +16,9 @@ pub use dda::Dda;
 pub use layout::Layout;
 pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, check_lambda, heuristic_resolution};
 
-use super::mailbox::with_mailbox;
+use super::mailbox::{CellWalk, cell_walk_queries};
 use super::{BuildError, Index, IndexInfo, Stats};
-use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
+use crate::geometry::{Aabb, Ray};
 use crate::scene::Geometry;
 pub(crate) use build::{Cells, MAX_REFS, fill_cells, fill_cells_with};
 use serde::{Deserialize, Serialize};
@@ -77,6 +77,29 @@ impl Grid {
     }
 }
 
+/// The 3D-DDA walk; stopping once the cutoff is at or before a cell's exit is exact (see the
+/// `dda` module).
+impl CellWalk for Grid {
+    #[inline(always)]
+    fn for_each_cell<S: Stats>(
+        &self,
+        ray: &Ray,
+        stats: &mut S,
+        mut visit: impl FnMut(&[u32], &mut S) -> f32,
+    ) {
+        stats.box_tests(1);
+        let Some(walk) = self.walk(ray) else {
+            return;
+        };
+        for (cell, t_exit) in walk {
+            stats.node_visit();
+            if visit(self.cells.of(cell), stats) <= t_exit {
+                return;
+            }
+        }
+    }
+}
+
 /// The bounds of all of `geom`'s primitives, or an error for index `index` when they are not
 /// finite.
 pub(crate) fn finite_bounds<G: Geometry>(geom: &G, index: &str) -> Result<Aabb, BuildError> {
@@ -118,61 +141,7 @@ impl Index for Grid {
         })
     }
 
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        stats.box_tests(1);
-        let walk = self.walk(ray)?;
-        with_mailbox(geom.len(), |mb| {
-            let mut best = ClosestHit::new(ray.t_max);
-            for (cell, t_exit) in walk {
-                stats.node_visit();
-                for &prim in self.cells.of(cell) {
-                    if mb.first_visit(prim) {
-                        stats.prim_test();
-                        if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                            best.offer(t, prim);
-                        }
-                    }
-                }
-                // Exact: see the `dda` module.
-                if best.t() <= t_exit {
-                    break;
-                }
-            }
-            best.get()
-        })
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        stats.box_tests(1);
-        let Some(walk) = self.walk(ray) else {
-            return false;
-        };
-        with_mailbox(geom.len(), |mb| {
-            for (cell, t_exit) in walk {
-                stats.node_visit();
-                for &prim in self.cells.of(cell) {
-                    if mb.first_visit(prim) {
-                        stats.prim_test();
-                        if geom.intersect(prim, ray, ray.t_max).is_some() {
-                            return true;
-                        }
-                    }
-                }
-                // Past `t_max`: later cells can only hold hits beyond it.
-                if ray.t_max <= t_exit {
-                    break;
-                }
-            }
-            false
-        })
-    }
+    cell_walk_queries!();
 
     fn info(&self) -> IndexInfo {
         let cells = self.layout.cell_count();

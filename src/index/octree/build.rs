@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 pub const MAX_DEPTH_LIMIT: usize = 16;
 
 /// Node budget: a build that would need more nodes fails with a typed error instead of
-/// exhausting memory (2^24 nodes is about 1 GiB with ropes).
+/// exhausting memory (2^24 nodes is about 1.5 GiB with ropes and content boxes).
 pub const MAX_NODES: usize = 1 << 24;
 
 /// A cell whose smallest side is under this many overlap paddings (the
@@ -30,7 +30,10 @@ pub const MIN_SIDE_IN_PADS: f32 = 4.0;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct OctreeParams {
-    /// A cell holding more primitives than this is subdivided (at least 1).
+    /// A cell holding more primitives than this is subdivided (at least 1). The default, 16, was
+    /// chosen by `sweep octree` and suite runs (README, "Sweeps"): against 8 it halves the nodes
+    /// on `flat` (whose leaves straddle many triangle edges) and the walk's cache misses with
+    /// them, for about 2 more tests per ray.
     pub max_prims: usize,
     /// Deepest level a leaf may have (the root is level 0; at most [`MAX_DEPTH_LIMIT`]).
     pub max_depth: usize,
@@ -39,7 +42,7 @@ pub struct OctreeParams {
 impl Default for OctreeParams {
     fn default() -> Self {
         OctreeParams {
-            max_prims: 8,
+            max_prims: 16,
             max_depth: 10,
         }
     }
@@ -128,7 +131,7 @@ impl<G: Geometry> Builder<'_, G> {
         let node = &mut self.tree.nodes[idx as usize];
         node.first = self.tree.prim_ids.len() as u32;
         node.count = prims.len() as u32;
-        node.content = prims
+        self.tree.contents[idx as usize] = prims
             .iter()
             .fold(Aabb::EMPTY, |b, &p| b.union(self.geom.bounds(p)));
         self.tree.prim_ids.extend_from_slice(prims);
@@ -173,9 +176,9 @@ impl<G: Geometry> Builder<'_, G> {
         level: usize,
         ropes: [u32; 6],
     ) -> Result<(), BuildError> {
-        self.tree.ropes[idx as usize] = ropes;
+        self.tree.nodes[idx as usize].ropes = ropes;
         self.tree.max_level = self.tree.max_level.max(level);
-        let cell = self.tree.nodes[idx as usize].cell;
+        let cell = self.tree.nodes[idx as usize].cell();
         let mid = cell.min + (cell.max - cell.min) * 0.5;
         let Some(children) = self.split(&cell, mid, prims, level) else {
             self.make_leaf(idx, prims);
@@ -190,13 +193,8 @@ impl<G: Geometry> Builder<'_, G> {
         }
         let first = first as u32;
         for c in 0..8 {
-            self.tree.nodes.push(Node {
-                cell: octant_cell(&cell, mid, c),
-                first: 0,
-                count: 0,
-                content: Aabb::EMPTY,
-            });
-            self.tree.ropes.push([NO_ROPE; 6]);
+            self.tree.nodes.push(Node::new(octant_cell(&cell, mid, c)));
+            self.tree.contents.push(Aabb::EMPTY);
         }
         let node = &mut self.tree.nodes[idx as usize];
         node.first = first;
@@ -226,13 +224,8 @@ impl OctreeTree {
             geom,
             params,
             tree: OctreeTree {
-                nodes: vec![Node {
-                    cell: root,
-                    first: 0,
-                    count: 0,
-                    content: Aabb::EMPTY,
-                }],
-                ropes: vec![[NO_ROPE; 6]],
+                nodes: vec![Node::new(root)],
+                contents: vec![Aabb::EMPTY],
                 prim_ids: Vec::new(),
                 max_level: 0,
                 prim_count: geom.len(),
@@ -243,7 +236,7 @@ impl OctreeTree {
         let mut tree = b.tree;
         tighten_ropes(&mut tree);
         tree.nodes.shrink_to_fit();
-        tree.ropes.shrink_to_fit();
+        tree.contents.shrink_to_fit();
         tree.prim_ids.shrink_to_fit();
         Ok(tree)
     }
@@ -253,14 +246,14 @@ impl OctreeTree {
 /// deepest node that still covers the whole face, so the neighbor traversal descends less.
 fn tighten_ropes(tree: &mut OctreeTree) {
     for n in 0..tree.nodes.len() {
-        let cell = tree.nodes[n].cell;
+        let cell = tree.nodes[n].cell();
         for axis in 0..3 {
             for upper in [false, true] {
                 let f = face(axis, upper);
-                let mut r = tree.ropes[n][f];
+                let mut r = tree.nodes[n].ropes[f];
                 while r != NO_ROPE && !tree.nodes[r as usize].is_leaf() {
                     let first = tree.nodes[r as usize].first;
-                    let mid = tree.nodes[first as usize].cell.max;
+                    let mid = tree.nodes[first as usize].max();
                     // The child on our side of the face, on the side of `cell` elsewhere.
                     let mut c = 0;
                     for b in 0..3 {
@@ -273,7 +266,7 @@ fn tighten_ropes(tree: &mut OctreeTree) {
                             c |= octant_bit(b);
                         }
                     }
-                    let child = &tree.nodes[first as usize + c].cell;
+                    let child = &tree.nodes[first as usize + c].cell();
                     let covers = (0..3)
                         .filter(|&b| b != axis)
                         .all(|b| child.min[b] <= cell.min[b] && cell.max[b] <= child.max[b]);
@@ -282,7 +275,7 @@ fn tighten_ropes(tree: &mut OctreeTree) {
                     }
                     r = first + c as u32;
                 }
-                tree.ropes[n][f] = r;
+                tree.nodes[n].ropes[f] = r;
             }
         }
     }

@@ -43,16 +43,17 @@ pub use neighbor::Neighbor;
 pub use topdown::TopDown;
 pub use tree::OctreeTree;
 
-use super::mailbox::with_mailbox;
+use super::mailbox::{CellWalk, cell_walk_queries};
 use super::{BuildError, Index, IndexInfo, Stats};
-use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::geometry::Ray;
 use crate::scene::Geometry;
 use std::marker::PhantomData;
 
 /// An order in which a traversal hands the leaves a ray meets to `visit`.
 ///
 /// Contract: leaves come in increasing order of their `t` interval along the ray, starting with
-/// the leaf that holds the ray at its entry into the root (clipped to `ray.t_min`). `visit`
+/// the leaf that holds the ray at `enter`, its entry into the root (clipped to `ray.t_min`,
+/// computed and counted as one box test by the caller). `visit`
 /// returns the current cutoff (the best `t`, or `-inf` to stop at once; `ray.t_max` before the
 /// first call); the walk stops after a leaf whose exit parameter is `>=` the cutoff, or when the
 /// ray leaves the octree. A leaf whose content box the ray misses within `[t_min, cutoff]` is
@@ -61,6 +62,7 @@ pub trait LeafOrder: Send + Sync + 'static {
     fn for_each_leaf<S: Stats>(
         tree: &OctreeTree,
         ray: &Ray,
+        enter: f32,
         stats: &mut S,
         visit: impl FnMut(&[u32], &mut S) -> f32,
     );
@@ -85,6 +87,23 @@ impl<O: LeafOrder> Octree<O> {
     }
 }
 
+/// The leaves in the traversal's order (exact: see the module documentation).
+impl<O: LeafOrder> CellWalk for Octree<O> {
+    #[inline(always)]
+    fn for_each_cell<S: Stats>(
+        &self,
+        ray: &Ray,
+        stats: &mut S,
+        visit: impl FnMut(&[u32], &mut S) -> f32,
+    ) {
+        stats.box_tests(1);
+        let root = self.tree.root_cell();
+        if let Some((enter, _)) = root.ray_interval(ray, ray.t_min, ray.t_max) {
+            O::for_each_leaf(&self.tree, ray, enter, stats, visit);
+        }
+    }
+}
+
 impl<O: LeafOrder> Index for Octree<O> {
     type Params = OctreeParams;
 
@@ -95,44 +114,7 @@ impl<O: LeafOrder> Index for Octree<O> {
         })
     }
 
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        with_mailbox(geom.len(), |mb| {
-            let mut best = ClosestHit::new(ray.t_max);
-            O::for_each_leaf(&self.tree, ray, stats, |prims, stats| {
-                for &p in prims {
-                    if mb.first_visit(p) {
-                        stats.prim_test();
-                        if let Some(t) = geom.intersect(p, ray, best.t()) {
-                            best.offer(t, p);
-                        }
-                    }
-                }
-                best.t()
-            });
-            best.get()
-        })
-    }
-
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        with_mailbox(geom.len(), |mb| {
-            let mut found = false;
-            O::for_each_leaf(&self.tree, ray, stats, |prims, stats| {
-                found = prims.iter().any(|&p| {
-                    mb.first_visit(p) && {
-                        stats.prim_test();
-                        geom.intersect(p, ray, ray.t_max).is_some()
-                    }
-                });
-                if found { f32::NEG_INFINITY } else { ray.t_max }
-            });
-            found
-        })
-    }
+    cell_walk_queries!();
 
     fn info(&self) -> IndexInfo {
         let t = &self.tree;

@@ -28,7 +28,7 @@ fn locate<S: Stats>(tree: &OctreeTree, r: &AxisRay, mut node: u32, t: f32, stats
         if n.is_leaf() {
             return node;
         }
-        let mid = tree.nodes[n.first as usize].cell.max;
+        let mid = tree.nodes[n.first as usize].max();
         node = n.first + r.child_at(mid, t) as u32;
     }
 }
@@ -38,28 +38,25 @@ impl LeafOrder for Neighbor {
     fn for_each_leaf<S: Stats>(
         tree: &OctreeTree,
         ray: &Ray,
+        enter: f32,
         stats: &mut S,
         mut visit: impl FnMut(&[u32], &mut S) -> f32,
     ) {
-        stats.box_tests(1);
-        let Some((enter, _)) = tree.root_cell().ray_interval(ray, ray.t_min, ray.t_max) else {
-            return;
-        };
         let r = AxisRay::new(ray);
         let mut t = enter;
         let mut leaf = locate(tree, &r, 0, t, stats);
         let mut cutoff = ray.t_max;
         loop {
-            let node = &tree.nodes[leaf as usize];
-            let prims = tree.leaf_prims_within(node, ray, cutoff, stats);
+            let prims = tree.leaf_prims_within(leaf, ray, cutoff, stats);
             if !prims.is_empty() {
                 cutoff = visit(prims, stats);
             }
-            let (exit, axis, upper) = r.exit(&node.cell);
+            let node = &tree.nodes[leaf as usize];
+            let (exit, axis, upper) = r.exit(&node.cell());
             if cutoff <= exit {
                 return;
             }
-            let next = tree.ropes[leaf as usize][face(axis, upper)];
+            let next = node.ropes[face(axis, upper)];
             if next == NO_ROPE {
                 return;
             }

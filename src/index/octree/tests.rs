@@ -61,12 +61,12 @@ fn cells_tile_the_root_and_leaves_list_exactly_the_overlapping_primitives() {
     let mut volume = 0.0f64;
     for n in t.nodes.iter().filter(|n| n.is_leaf()) {
         let want: Vec<u32> = (0..g.len() as u32)
-            .filter(|&p| g.overlaps_box(p, &n.cell))
+            .filter(|&p| g.overlaps_box(p, &n.cell()))
             .collect();
         // Children are filtered from the parent's list, so a leaf lists every overlapping
         // primitive that its ancestors kept (all of them: the tests are conservative).
         assert_eq!(t.leaf_prims(n), want.as_slice());
-        let x = n.cell.extent();
+        let x = n.cell().extent();
         volume += x.x as f64 * x.y as f64 * x.z as f64;
     }
     let root_volume = e.x as f64 * e.y as f64 * e.z as f64;
@@ -86,30 +86,30 @@ fn ropes_lead_to_the_equal_or_larger_neighbour_across_each_face() {
     for (i, n) in t.nodes.iter().enumerate() {
         for axis in 0..3 {
             for upper in [false, true] {
-                let rope = t.ropes[i][face(axis, upper)];
-                let plane = if upper { n.cell.max } else { n.cell.min }[axis];
+                let rope = n.ropes[face(axis, upper)];
+                let plane = if upper { n.cell().max } else { n.cell().min }[axis];
                 if rope == NO_ROPE {
                     let edge = if upper { root.max } else { root.min }[axis];
                     assert_eq!(plane, edge, "node {i} axis {axis} upper {upper}");
                     continue;
                 }
-                let m = &t.nodes[rope as usize].cell;
+                let m = &t.nodes[rope as usize].cell();
                 let other = if upper { m.min } else { m.max }[axis];
                 assert_eq!(plane, other, "node {i} -> {rope}: not adjacent");
                 for b in (0..3).filter(|&b| b != axis) {
-                    assert!(m.min[b] <= n.cell.min[b] && n.cell.max[b] <= m.max[b]);
+                    assert!(m.min[b] <= n.cell().min[b] && n.cell().max[b] <= m.max[b]);
                 }
                 // Equal or larger (up to the rounding of the cells' coordinates).
-                assert!(m.extent()[axis] >= n.cell.extent()[axis] * (1.0 - 1e-5));
+                assert!(m.extent()[axis] >= n.cell().extent()[axis] * (1.0 - 1e-5));
                 // The deepest such node: none of its children touching the face covers it.
                 let target = &t.nodes[rope as usize];
                 if !target.is_leaf() {
                     for c in 0..8 {
-                        let k = &t.nodes[target.first as usize + c].cell;
+                        let k = &t.nodes[target.first as usize + c].cell();
                         let touches = if upper { k.min } else { k.max }[axis] == plane;
                         let covers = (0..3)
                             .filter(|&b| b != axis)
-                            .all(|b| k.min[b] <= n.cell.min[b] && n.cell.max[b] <= k.max[b]);
+                            .all(|b| k.min[b] <= n.cell().min[b] && n.cell().max[b] <= k.max[b]);
                         assert!(!(touches && covers), "node {i}: rope {rope} not tight");
                     }
                 }

@@ -54,13 +54,13 @@ fn descend<S: Stats>(
     stats.node_visit();
     let n = &tree.nodes[node as usize];
     if n.is_leaf() {
-        let prims = tree.leaf_prims_within(n, w.ray, w.cutoff, stats);
+        let prims = tree.leaf_prims_within(node, w.ray, w.cutoff, stats);
         if !prims.is_empty() {
             w.cutoff = visit(prims, stats);
         }
         return w.cutoff <= exit;
     }
-    let tm = w.r.mid_crossings(tree.nodes[n.first as usize].cell.max);
+    let tm = w.r.mid_crossings(tree.nodes[n.first as usize].max());
     let mut c = AxisRay::octant_at(tm, t0.max_element().max(t_start));
     loop {
         let upper = mask_of(c);
@@ -88,20 +88,17 @@ impl LeafOrder for TopDown {
     fn for_each_leaf<S: Stats>(
         tree: &OctreeTree,
         ray: &Ray,
+        enter: f32,
         stats: &mut S,
         mut visit: impl FnMut(&[u32], &mut S) -> f32,
     ) {
-        stats.box_tests(1);
-        let root = tree.root_cell();
-        let Some((enter, _)) = root.ray_interval(ray, ray.t_min, ray.t_max) else {
-            return;
-        };
         let r = AxisRay::new(ray);
         let mut w = Walk {
             ray,
             r,
             cutoff: ray.t_max,
         };
-        descend(tree, &mut w, 0, r.slabs(&root), enter, stats, &mut visit);
+        let slabs = r.slabs(&tree.root_cell());
+        descend(tree, &mut w, 0, slabs, enter, stats, &mut visit);
     }
 }

@@ -3,29 +3,58 @@
 
 use crate::geometry::{Aabb, Ray};
 use crate::index::Stats;
+use glam::Vec3A;
 
 /// `count` of an internal node.
 pub(super) const INTERNAL: u32 = u32::MAX;
 /// A rope that leads nowhere (the face lies on the root's boundary).
 pub(super) const NO_ROPE: u32 = u32::MAX;
 
-/// One node. Child `c` of an internal node is `first + c`, with the octant bits of Revelles et
-/// al. 2000: `4` = upper half in x, `2` = upper in y, `1` = upper in z.
+/// One node, one cache line: its cell, its children or primitives, and its face ropes (all a
+/// neighbour-traversal step reads; a leaf's content box, read only for non-empty leaves, is kept
+/// apart in [`OctreeTree::contents`]). Child `c` of an internal node is `first + c`, with the
+/// octant bits of Revelles et al. 2000: `4` = upper half in x, `2` = upper in y, `1` = upper in z.
 #[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
 pub(super) struct Node {
-    /// The closed cell. Siblings share their split planes bit for bit (the parent's midpoint is
-    /// computed once and copied), so any two leaves that touch agree on the plane between them.
-    pub cell: Aabb,
+    /// Lower corner of the closed cell. Siblings share their split planes bit for bit (the
+    /// parent's split point is computed once and copied), so any two leaves that touch agree on
+    /// the plane between them.
+    min: [f32; 3],
     /// Internal: index of the first of the eight children. Leaf: offset into `prim_ids`.
     pub first: u32,
+    /// Upper corner of the closed cell (of child 0: its parent's split point).
+    max: [f32; 3],
     /// Leaf: number of primitive ids. Internal: [`INTERNAL`].
     pub count: u32,
-    /// Leaf: the union of its primitives' bounds ([`crate::scene::Geometry::bounds`]; empty for
-    /// an empty leaf and for internal nodes). It may reach beyond the cell.
-    pub content: Aabb,
+    /// `ropes[f]`: the node across face `f` (see [`OctreeTree`]), or [`NO_ROPE`].
+    pub ropes: [u32; 6],
 }
 
 impl Node {
+    /// A leaf without primitives or ropes over `cell`.
+    pub fn new(cell: Aabb) -> Node {
+        Node {
+            min: cell.min.to_array(),
+            first: 0,
+            max: cell.max.to_array(),
+            count: 0,
+            ropes: [NO_ROPE; 6],
+        }
+    }
+
+    /// The closed cell.
+    #[inline(always)]
+    pub fn cell(&self) -> Aabb {
+        Aabb::new(Vec3A::from_array(self.min), Vec3A::from_array(self.max))
+    }
+
+    /// The cell's upper corner (of a first child: the parent's split point).
+    #[inline(always)]
+    pub fn max(&self) -> Vec3A {
+        Vec3A::from_array(self.max)
+    }
+
     #[inline(always)]
     pub fn is_leaf(&self) -> bool {
         self.count != INTERNAL
@@ -48,13 +77,16 @@ pub(super) const fn octant_bit(axis: usize) -> usize {
 ///
 /// Invariants: `nodes[0]` is the root, a cube enclosing the scene bounds (padded); every
 /// primitive whose conservative overlap test ([`crate::scene::Geometry::overlaps_box`]) accepts a
-/// leaf's cell is listed in that leaf; `ropes[n][f]` is the deepest node whose cell covers the
+/// leaf's cell is listed in that leaf; `nodes[n].ropes[f]` is the deepest node whose cell covers the
 /// whole face `f` of node `n` from the other side (Samet's equal-or-larger neighbour, moved down
-/// as far as it still covers the face, after Havran), or [`NO_ROPE`] on the root's boundary.
+/// as far as it still covers the face, after Havran), or [`NO_ROPE`] on the root's boundary;
+/// `contents[n]` is leaf `n`'s content box (empty for internal nodes and empty leaves).
 #[derive(Debug, Clone)]
 pub struct OctreeTree {
     pub(super) nodes: Vec<Node>,
-    pub(super) ropes: Vec<[u32; 6]>,
+    /// Leaf `n`: the union of its primitives' bounds
+    /// ([`crate::scene::Geometry::bounds`]); it may reach beyond the cell.
+    pub(super) contents: Vec<Aabb>,
     pub(super) prim_ids: Vec<u32>,
     /// Deepest leaf level (the root is level 0).
     pub(super) max_level: usize,
@@ -65,12 +97,12 @@ pub struct OctreeTree {
 impl OctreeTree {
     /// The root cell (a cube enclosing the scene, padded).
     pub fn root_cell(&self) -> Aabb {
-        self.nodes[0].cell
+        self.nodes[0].cell()
     }
 
     /// The cells of all leaves, in node order (for tests that aim rays at cell corners).
     pub fn leaf_cells(&self) -> impl Iterator<Item = Aabb> + '_ {
-        self.nodes.iter().filter(|n| n.is_leaf()).map(|n| n.cell)
+        self.nodes.iter().filter(|n| n.is_leaf()).map(Node::cell)
     }
 
     /// Primitive ids of a leaf.
@@ -92,16 +124,17 @@ impl OctreeTree {
     #[inline(always)]
     pub(super) fn leaf_prims_within<S: Stats>(
         &self,
-        node: &Node,
+        leaf: u32,
         ray: &Ray,
         cutoff: f32,
         stats: &mut S,
     ) -> &[u32] {
+        let node = &self.nodes[leaf as usize];
         if node.count == 0 {
             return &[];
         }
         stats.box_tests(1);
-        match node.content.ray_interval(ray, ray.t_min, cutoff) {
+        match self.contents[leaf as usize].ray_interval(ray, ray.t_min, cutoff) {
             Some(_) => self.leaf_prims(node),
             None => &[],
         }
@@ -120,10 +153,10 @@ impl OctreeTree {
             .count()
     }
 
-    /// Heap bytes: nodes, ropes and leaf primitive ids.
+    /// Heap bytes: nodes (with their ropes), content boxes and leaf primitive ids.
     pub fn memory_bytes(&self) -> usize {
         self.nodes.capacity() * size_of::<Node>()
-            + self.ropes.capacity() * size_of::<[u32; 6]>()
+            + self.contents.capacity() * size_of::<Aabb>()
             + self.prim_ids.capacity() * size_of::<u32>()
     }
 }
