@@ -71,6 +71,7 @@ fn agrees_with_other_parameters() {
         "bsp:sweep=false,axis_candidates=1,plane_candidates=0",
         "bsp:sweep=false,plane_candidates=30,leaf_size=1",
         "bsp:max_depth=3",
+        "bsp:mailbox=false",
     ] {
         common::assert_agrees(spec, &scene, &rays);
     }

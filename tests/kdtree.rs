@@ -20,6 +20,8 @@ fn agrees_with_other_parameters() {
         "kdtree:leaf_size=8",
         "kdtree:max_depth=3",
         "kdtree:intersect_cost=2.0,empty_bonus=0.0",
+        "kdtree:mailbox=false",
+        "kdtree:mailbox=false,max_depth=6",
     ] {
         common::assert_agrees(spec, &scene, &rays);
     }

@@ -15,9 +15,11 @@
 //!
 //! Each primitive is tested at most once per ray (the shared [`crate::index::mailbox`]).
 
+mod axis;
 mod tree;
 mod walk;
 
+pub use axis::{AxisRay, axis_step};
 pub use tree::{Built, NearFarIndex, Partition, SahParams};
 pub use walk::{SplitNode, Step};
 

@@ -25,6 +25,15 @@ impl<T: Copy, const N: usize> Stack<T, N> {
         self.len += 1;
     }
 
+    /// Writes `item` on top and keeps it only when `keep`: a push without a branch on `keep`
+    /// (the slot above the top is written either way, so it must exist: callers bound their
+    /// depth by `N - 1`).
+    #[inline(always)]
+    pub fn push_if(&mut self, item: T, keep: bool) {
+        self.items[self.len].write(item);
+        self.len += keep as usize;
+    }
+
     #[inline(always)]
     pub fn pop(&mut self) -> Option<T> {
         self.len = self.len.checked_sub(1)?;
@@ -54,6 +63,16 @@ mod tests {
         assert_eq!((s.pop(), s.pop()), (Some(3), Some(2)));
         s.push(4);
         assert_eq!((s.pop(), s.pop(), s.pop()), (Some(4), Some(1), None));
+    }
+
+    #[test]
+    fn push_if_keeps_only_when_asked() {
+        let mut s = Stack::<u32, 3>::new();
+        s.push_if(1, false);
+        s.push_if(2, true);
+        s.push_if(3, false);
+        s.push_if(4, true);
+        assert_eq!((s.pop(), s.pop(), s.pop()), (Some(4), Some(2), None));
     }
 
     #[test]

@@ -48,6 +48,9 @@ pub struct BspParams {
     pub max_depth: Option<u32>,
     /// Nodes with at most this many primitives become leaves (at least 1).
     pub leaf_size: u32,
+    /// Test each primitive at most once per ray (a per-thread stamp per primitive); without
+    /// it a primitive in several leaves the ray visits is tested again (same hits).
+    pub mailbox: bool,
 }
 
 impl Default for BspParams {
@@ -61,6 +64,7 @@ impl Default for BspParams {
             plane_candidates: 12,
             max_depth: None,
             leaf_size: 2,
+            mailbox: true,
         }
     }
 }
@@ -100,6 +104,10 @@ impl BspParams {
 impl Partition for BspNode {
     const NAME: &'static str = "bsp";
     type Params = BspParams;
+
+    fn mailbox(params: &BspParams) -> bool {
+        params.mailbox
+    }
 
     fn build<G: Geometry>(
         geom: &G,

@@ -2,13 +2,15 @@
 
 use crate::geometry::Ray;
 use crate::geometry::float::gamma;
-use crate::index::near_far::{CROSSING_REL, SplitNode, Step};
+use crate::index::near_far::{AxisRay, CROSSING_REL, SplitNode, Step, axis_step};
 use glam::Vec3A;
 
 /// One BSP node. An interior node holds its plane `normal . p = offset` (unit normal); the child
 /// below the plane (`normal . p <= offset`) is the next node (depth-first order), the child
-/// above is at `link`. A leaf has `LEAF_BIT` set in `link`, the primitive count below it, and
-/// its first slot in the id array in `first`.
+/// above is at `link`; its `first` is the axis (`0..=2`) when the normal is that unit axis (the
+/// walk then takes the kd-tree's cheaper step, [`axis_step`]), else [`GENERAL`]. A leaf has
+/// `LEAF_BIT` set in `link`, the primitive count below it, and its first slot in the id array in
+/// `first`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C)]
 pub struct BspNode {
@@ -19,6 +21,9 @@ pub struct BspNode {
 }
 
 const LEAF_BIT: u32 = 1 << 31;
+
+/// The `first` of an interior node whose plane is not an axis plane.
+const GENERAL: u32 = 3;
 
 /// Largest child index or leaf count a node holds.
 pub const MAX_LINK: u32 = LEAF_BIT - 1;
@@ -50,11 +55,14 @@ impl BspNode {
 
     pub fn interior(normal: Vec3A, offset: f32, above: u32) -> BspNode {
         debug_assert!(above <= MAX_LINK);
+        let axis = [Vec3A::X, Vec3A::Y, Vec3A::Z]
+            .iter()
+            .position(|&a| a == normal);
         BspNode {
             normal: normal.into(),
             offset,
             link: above,
-            first: 0,
+            first: axis.map_or(GENERAL, |a| a as u32),
         }
     }
 
@@ -79,9 +87,10 @@ impl BspNode {
 const NUM_ERR: f32 = gamma(4);
 const DEN_ERR: f32 = gamma(3);
 
-/// What a ray precomputes for its BSP steps: origin and direction and their absolute values
-/// (for the error bounds of the dot products).
+/// What a ray precomputes for its BSP steps: the axis steps' data, origin and direction and
+/// their absolute values (for the error bounds of the dot products).
 pub struct BspRay {
+    axis: AxisRay,
     origin: Vec3A,
     dir: Vec3A,
     abs_origin: Vec3A,
@@ -94,6 +103,7 @@ impl SplitNode for BspNode {
     #[inline(always)]
     fn prepare(ray: &Ray) -> BspRay {
         BspRay {
+            axis: AxisRay::new(ray),
             origin: ray.origin,
             dir: ray.dir,
             abs_origin: ray.origin.abs(),
@@ -101,7 +111,8 @@ impl SplitNode for BspNode {
         }
     }
 
-    /// Crossing of the plane `n . p = offset`: `t = num / den` with `num = offset - n . o` and
+    /// An axis plane crosses by [`axis_step`]. Crossing of a general plane `n . p = offset`:
+    /// `t = num / den` with `num = offset - n . o` and
     /// `den = n . d`. The computed `num` and `den` are within `e_num = gamma(4) (|n| . |o| +
     /// |offset|)` and `e_den = gamma(3) |n| . |d|` of the exact ones, so the exact crossing is
     /// within `(e_num + |t| e_den) / (|den| - e_den)` of `num / den`; that bound, and the bracket,
@@ -116,8 +127,11 @@ impl SplitNode for BspNode {
                 count: self.link & MAX_LINK,
             };
         }
-        let normal = Vec3A::from(self.normal);
         let (below, above) = (at + 1, self.link);
+        if self.first != GENERAL {
+            return axis_step(self.offset, self.first as usize, below, above, &ray.axis);
+        }
+        let normal = Vec3A::from(self.normal);
         let num = self.offset - normal.dot(ray.origin);
         let den = normal.dot(ray.dir);
         let abs_normal = normal.abs();
@@ -173,5 +187,28 @@ mod tests {
                 above: 77
             }
         );
+    }
+
+    #[test]
+    fn axis_planes_step_as_kd_nodes_general_planes_do_not() {
+        use crate::index::kdtree::KdNode;
+        let ray = Ray::new(
+            glam::Vec3::new(0.1, -3.0, 0.4),
+            glam::Vec3::new(0.2, 1.0, -0.3),
+            0.0,
+            9.0,
+        )
+        .unwrap();
+        let parts = Step::crossing;
+        let kd = parts(KdNode::interior(1, 2.0, 77).step(5, &KdNode::prepare(&ray)));
+        let bsp = parts(BspNode::interior(Vec3A::Y, 2.0, 77).step(5, &BspNode::prepare(&ray)));
+        assert_eq!(kd, bsp);
+        // A tilted plane through the same crossing takes the general step: its bracket differs
+        // but still holds the crossing.
+        let n = Vec3A::new(0.0, 1.0, 1e-3).normalize();
+        let offset = n.dot(ray.at(5.0));
+        let (first, _, lo, hi) =
+            parts(BspNode::interior(n, offset, 77).step(5, &BspNode::prepare(&ray)));
+        assert!((first, lo < 5.0, hi > 5.0) == (6, true, true) && (lo, hi) != (kd.2, kd.3));
     }
 }

@@ -45,6 +45,9 @@ pub struct KdParams {
     pub max_depth: Option<u32>,
     /// Nodes with at most this many primitives become leaves (at least 1).
     pub leaf_size: u32,
+    /// Test each primitive at most once per ray (a per-thread stamp per primitive); without
+    /// it a primitive in several leaves the ray visits is tested again (same hits).
+    pub mailbox: bool,
 }
 
 impl Default for KdParams {
@@ -55,6 +58,7 @@ impl Default for KdParams {
             empty_bonus: 0.2,
             max_depth: None,
             leaf_size: 1,
+            mailbox: true,
         }
     }
 }
@@ -66,6 +70,10 @@ pub type KdTree = NearFarIndex<KdNode>;
 impl Partition for KdNode {
     const NAME: &'static str = "kdtree";
     type Params = KdParams;
+
+    fn mailbox(params: &KdParams) -> bool {
+        params.mailbox
+    }
 
     fn build<G: Geometry>(
         geom: &G,

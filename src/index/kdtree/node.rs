@@ -1,7 +1,7 @@
 //! The compact 8-byte kd-tree node (pbrt's layout) and its near/far step.
 
 use crate::geometry::Ray;
-use crate::index::near_far::{CROSSING_REL, SplitNode, Step};
+use crate::index::near_far::{AxisRay, SplitNode, Step, axis_step};
 
 /// One kd-tree node in 8 bytes.
 ///
@@ -74,32 +74,17 @@ impl KdNode {
     }
 }
 
-/// What a ray precomputes for its kd steps: origin, direction and inverse direction, padded to
-/// four lanes so that an axis index (`0..3`, masked by `& 3`) needs no bounds check.
-pub struct KdRay {
-    origin: [f32; 4],
-    dir: [f32; 4],
-    inv_dir: [f32; 4],
-}
-
 impl SplitNode for KdNode {
-    type RayData = KdRay;
+    type RayData = AxisRay;
 
     #[inline(always)]
-    fn prepare(ray: &Ray) -> KdRay {
-        KdRay {
-            origin: ray.origin.extend(0.0).into(),
-            dir: ray.dir.extend(0.0).into(),
-            inv_dir: ray.inv_dir.extend(0.0).into(),
-        }
+    fn prepare(ray: &Ray) -> AxisRay {
+        AxisRay::new(ray)
     }
 
-    /// The crossing of the plane is `(split - origin) * inv_dir`, the formula of
-    /// [`crate::geometry::Aabb::ray_interval`], bracketed by [`CROSSING_REL`]; the child the
-    /// direction points away from first. A ray parallel to the plane (or one whose crossing is
-    /// not finite) is handled by [`parallel_step`].
+    /// A leaf's range, or the crossing of the node's plane by [`axis_step`].
     #[inline(always)]
-    fn step(&self, at: u32, ray: &KdRay) -> Step {
+    fn step(&self, at: u32, ray: &AxisRay) -> Step {
         let payload = self.tag >> 2;
         let axis = (self.tag & 3) as usize;
         if axis == LEAF as usize {
@@ -108,48 +93,7 @@ impl SplitNode for KdNode {
                 count: payload,
             };
         }
-        let split = f32::from_bits(self.data);
-        let (below, above) = (at + 1, payload);
-        let t = (split - ray.origin[axis]) * ray.inv_dir[axis];
-        if !t.is_finite() {
-            return parallel_step(split, ray.origin[axis], ray.dir[axis], below, above);
-        }
-        let slack = t.abs() * CROSSING_REL;
-        let (first, second) = if ray.inv_dir[axis] < 0.0 {
-            (above, below)
-        } else {
-            (below, above)
-        };
-        Step::Cross {
-            first,
-            second,
-            lo: t - slack,
-            hi: t + slack,
-        }
-    }
-}
-
-/// A ray parallel to the plane at `split` (direction `d == 0`) stays on its origin's side, which
-/// is exact, and in the plane it is on both; a crossing that overflows or is `0 * inf` (a
-/// subnormal direction) visits both children over the whole interval, the origin's side first.
-#[cold]
-#[inline(never)]
-fn parallel_step(split: f32, o: f32, d: f32, below: u32, above: u32) -> Step {
-    let (first, second) = if o < split || (o == split && d > 0.0) {
-        (below, above)
-    } else {
-        (above, below)
-    };
-    let only_first = d == 0.0 && o != split;
-    Step::Cross {
-        first,
-        second,
-        lo: if only_first {
-            f32::INFINITY
-        } else {
-            f32::NEG_INFINITY
-        },
-        hi: f32::INFINITY,
+        axis_step(f32::from_bits(self.data), axis, at + 1, payload, ray)
     }
 }
 

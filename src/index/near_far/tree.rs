@@ -17,6 +17,9 @@ pub trait Partition: SplitNode {
     const NAME: &'static str;
     /// Typed build parameters (as [`Index::Params`]).
     type Params: Default + Clone + Debug + Serialize + DeserializeOwned + Send + Sync;
+    /// Whether the walk keeps a mailbox (each primitive tested at most once per ray) with
+    /// these parameters.
+    fn mailbox(params: &Self::Params) -> bool;
     /// Builds the nodes over all primitives of `geom` in the cell `root` (their bounds), with
     /// classification padding `pad` (world units, > 0).
     fn build<G: Geometry>(
@@ -46,6 +49,8 @@ pub struct NearFarIndex<N> {
     ids: Vec<u32>,
     bounds: Aabb,
     prims: usize,
+    /// Whether queries keep a mailbox ([`Partition::mailbox`]).
+    mailbox: bool,
     depth: usize,
     leaves: usize,
     empty_leaves: usize,
@@ -80,6 +85,7 @@ impl<N: Partition> Index for NearFarIndex<N> {
             ids: built.ids,
             bounds,
             prims: geom.len(),
+            mailbox: N::mailbox(params),
             depth: built.depth,
             leaves: built.leaves,
             empty_leaves: built.empty_leaves,
@@ -94,12 +100,22 @@ impl<N: Partition> Index for NearFarIndex<N> {
         ray: &Ray,
         stats: &mut S,
     ) -> Option<Hit> {
-        walk::closest_hit(&self.nodes, &self.ids, &self.bounds, geom, ray, stats)
+        let (nodes, ids, b) = (&self.nodes[..], &self.ids[..], &self.bounds);
+        if self.mailbox {
+            walk::closest_hit::<true, _, _, _>(nodes, ids, b, geom, ray, stats)
+        } else {
+            walk::closest_hit::<false, _, _, _>(nodes, ids, b, geom, ray, stats)
+        }
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        walk::any_hit(&self.nodes, &self.ids, &self.bounds, geom, ray, stats)
+        let (nodes, ids, b) = (&self.nodes[..], &self.ids[..], &self.bounds);
+        if self.mailbox {
+            walk::any_hit::<true, _, _, _>(nodes, ids, b, geom, ray, stats)
+        } else {
+            walk::any_hit::<false, _, _, _>(nodes, ids, b, geom, ray, stats)
+        }
     }
 
     fn info(&self) -> IndexInfo {

@@ -4,9 +4,15 @@
 //! Per ray: the node type's precomputation ([`SplitNode::prepare`], e.g. the inverse direction)
 //! once, then per node one [`SplitNode::step`] (one crossing or a leaf range), one compare per
 //! child and at most one push of a `(node, t0, t1)` span on a fixed stack on the call stack
-//! (never zeroed, never allocated). After a leaf, pending spans that start strictly after the
-//! best hit are dropped as they are popped, so the walk ends as soon as the best hit lies before
-//! every pending span.
+//! (never zeroed, never allocated). The interior step has no branch on the ray's side of the
+//! plane: the far span is written on the stack and kept only when both children are visited,
+//! and the next node is a select (those branches are the ones a predictor misses). After a
+//! leaf, pending spans that start strictly after the best hit are dropped as they are popped, so
+//! the walk ends as soon as the best hit lies before every pending span.
+//!
+//! Mailboxing is a choice of the index (`MAILBOX`): without it a primitive referenced by
+//! several leaves may be tested again on one ray, which returns the same `t` and so the same
+//! closest hit (ties go to the lowest id either way).
 
 use super::MAX_TREE_DEPTH;
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
@@ -28,6 +34,22 @@ pub enum Step {
         lo: f32,
         hi: f32,
     },
+}
+
+#[cfg(test)]
+impl Step {
+    /// `(first, second, lo, hi)` of a crossing; panics on a leaf (for tests of node steps).
+    pub(crate) fn crossing(self) -> (u32, u32, f32, f32) {
+        match self {
+            Step::Cross {
+                first,
+                second,
+                lo,
+                hi,
+            } => (first, second, lo, hi),
+            Step::Leaf { .. } => panic!("expected a crossing, got a leaf"),
+        }
+    }
 }
 
 /// A node of a binary space partition that the near/far walk can step through.
@@ -65,7 +87,8 @@ fn walk<N: SplitNode, S: Stats>(
         return;
     };
     let pre = N::prepare(ray);
-    // One push per level: the stack holds at most `depth` spans.
+    // At most one kept push per interior level (`MAX_TREE_DEPTH` of them), and `push_if`
+    // writes the slot above the top.
     let mut stack = Stack::<Span, { MAX_TREE_DEPTH as usize + 1 }>::new();
     let mut cur = Span { node: 0, t0, t1 };
     loop {
@@ -89,35 +112,41 @@ fn walk<N: SplitNode, S: Stats>(
                 lo,
                 hi,
             } => {
-                if hi >= cur.t0 {
-                    if lo <= cur.t1 {
-                        stack.push(Span {
-                            node: second,
-                            t0: cur.t0.max(lo),
-                            t1: cur.t1,
-                        });
-                    }
-                    cur = Span {
-                        node: first,
-                        t0: cur.t0,
-                        t1: cur.t1.min(hi),
-                    };
-                } else {
-                    // `hi < t0 <= t1`, so `lo <= t1`: the second child only.
-                    cur = Span {
-                        node: second,
-                        t0: cur.t0.max(lo),
-                        t1: cur.t1,
-                    };
-                }
+                // `lo <= hi` and `t0 <= t1`, so at least one child is visited; when the near
+                // one is not (`hi < t0`), `max(t0, lo) = t0`: the next span starts at `t0`
+                // either way, and ends at `min(t1, hi)` for the near child, `t1` for the far.
+                let near = hi >= cur.t0;
+                let far = Span {
+                    node: second,
+                    t0: max(cur.t0, lo),
+                    t1: cur.t1,
+                };
+                stack.push_if(far, near & (lo <= cur.t1));
+                let pick_first = (near as u32).wrapping_neg();
+                cur.node = second ^ ((first ^ second) & pick_first);
+                cur.t1 = min(cur.t1, if near { hi } else { f32::INFINITY });
             }
         }
     }
 }
 
-/// Tests the leaf's primitives not yet tested for this ray, keeping the closest hit in `best`.
+/// The larger of `a` and `b`, or `a` when `b` is NaN (one instruction, as [`f32::max`] for
+/// numbers; the walk's `a` is never NaN).
 #[inline(always)]
-fn closest_in_leaf<G: Geometry, S: Stats>(
+fn max(a: f32, b: f32) -> f32 {
+    if b > a { b } else { a }
+}
+
+/// The smaller of `a` and `b`, or `a` when `b` is NaN.
+#[inline(always)]
+fn min(a: f32, b: f32) -> f32 {
+    if b < a { b } else { a }
+}
+
+/// Tests the leaf's primitives (with `MAILBOX`, those not yet tested for this ray), keeping the
+/// closest hit in `best`.
+#[inline(always)]
+fn closest_in_leaf<const MAILBOX: bool, G: Geometry, S: Stats>(
     geom: &G,
     ray: &Ray,
     prims: &[u32],
@@ -126,7 +155,7 @@ fn closest_in_leaf<G: Geometry, S: Stats>(
     stats: &mut S,
 ) {
     for &p in prims {
-        if mb.first_visit(p) {
+        if !MAILBOX || mb.first_visit(p) {
             stats.prim_test();
             if let Some(t) = geom.intersect(p, ray, best.t()) {
                 best.offer(t, p);
@@ -135,10 +164,20 @@ fn closest_in_leaf<G: Geometry, S: Stats>(
     }
 }
 
+/// Runs `f` with this thread's mailbox when `MAILBOX`, else with an empty one it never touches.
+#[inline(always)]
+fn with_dedup<const MAILBOX: bool, R>(len: usize, f: impl FnOnce(&mut Mailbox) -> R) -> R {
+    if MAILBOX {
+        with_mailbox(len, f)
+    } else {
+        f(&mut Mailbox::default())
+    }
+}
+
 /// The closest hit by near/far traversal (see the module doc of [`super`] for why it matches
-/// brute force).
+/// brute force); `MAILBOX`: each primitive tested at most once.
 #[inline]
-pub(super) fn closest_hit<N: SplitNode, G: Geometry, S: Stats>(
+pub(super) fn closest_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
     nodes: &[N],
     ids: &[u32],
     bounds: &Aabb,
@@ -146,7 +185,7 @@ pub(super) fn closest_hit<N: SplitNode, G: Geometry, S: Stats>(
     ray: &Ray,
     stats: &mut S,
 ) -> Option<Hit> {
-    with_mailbox(geom.len(), |mb| {
+    with_dedup::<MAILBOX, _>(geom.len(), |mb| {
         let best = std::cell::Cell::new(ClosestHit::new(ray.t_max));
         walk(
             nodes,
@@ -156,7 +195,7 @@ pub(super) fn closest_hit<N: SplitNode, G: Geometry, S: Stats>(
             stats,
             |prims, stats| {
                 let mut b = best.get();
-                closest_in_leaf(geom, ray, prims, mb, &mut b, stats);
+                closest_in_leaf::<MAILBOX, _, _>(geom, ray, prims, mb, &mut b, stats);
                 best.set(b);
                 false
             },
@@ -168,7 +207,7 @@ pub(super) fn closest_hit<N: SplitNode, G: Geometry, S: Stats>(
 
 /// Whether any primitive is hit (stops at the first).
 #[inline]
-pub(super) fn any_hit<N: SplitNode, G: Geometry, S: Stats>(
+pub(super) fn any_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
     nodes: &[N],
     ids: &[u32],
     bounds: &Aabb,
@@ -176,7 +215,7 @@ pub(super) fn any_hit<N: SplitNode, G: Geometry, S: Stats>(
     ray: &Ray,
     stats: &mut S,
 ) -> bool {
-    with_mailbox(geom.len(), |mb| {
+    with_dedup::<MAILBOX, _>(geom.len(), |mb| {
         let mut found = false;
         walk(
             nodes,
@@ -186,7 +225,7 @@ pub(super) fn any_hit<N: SplitNode, G: Geometry, S: Stats>(
             stats,
             |prims, stats| {
                 found = prims.iter().any(|&p| {
-                    mb.first_visit(p) && {
+                    (!MAILBOX || mb.first_visit(p)) && {
                         stats.prim_test();
                         geom.intersect(p, ray, ray.t_max).is_some()
                     }
