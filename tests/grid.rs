@@ -9,7 +9,8 @@ use accelbench::index::{
     Counters, Grid, GridParams, Index, IndexSpec, build_index, build_index_on,
 };
 use accelbench::scene::{Geometry, Scene, Triangles, generators};
-use common::{accelbench, agreement_rays, assert_agrees};
+use common::cli::accelbench;
+use common::{agreement_rays, assert_agrees};
 use glam::{Vec3, Vec3A};
 use std::collections::HashSet;
 

@@ -151,7 +151,7 @@ fn bad_parameters_are_typed_errors() {
 fn cli_sweep_grid2_writes_csv_and_charts() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("sweep");
-    let o = common::accelbench(&[
+    let o = common::cli::accelbench(&[
         "sweep",
         "grid2",
         "--scene",
@@ -178,7 +178,7 @@ fn cli_sweep_grid2_writes_csv_and_charts() {
     for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
         assert!(out.join(f).exists(), "{f}");
     }
-    let bad = common::accelbench(&["sweep", "grid2", "--scene", "soup", "--lambda=0"]);
+    let bad = common::cli::accelbench(&["sweep", "grid2", "--scene", "soup", "--lambda=0"]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("lambda"));
 }
