@@ -30,11 +30,7 @@ fn kernels(c: &mut Criterion) {
     let tris: Vec<Triangle> = (0..PAIRS)
         .map(|i| {
             let j = i as f32 * 1e-4;
-            Triangle::new(
-                Vec3A::new(j, 0.0, 0.0),
-                Vec3A::new(1.0, j, 0.1),
-                Vec3A::new(0.0, 1.0, j),
-            )
+            Triangle::from_corners([j, 0.0, 0.0], [1.0, j, 0.1], [0.0, 1.0, j])
         })
         .collect();
     let spheres: Vec<Sphere> = (0..PAIRS)

@@ -85,13 +85,16 @@ fn rays_for(scene: &Scene, n: usize) -> Vec<Ray> {
     agreement_rays(scene, n)
 }
 
-fn tri(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> Triangle {
-    Triangle::new(Vec3A::from(a), Vec3A::from(b), Vec3A::from(c))
-}
-
 #[test]
 fn one_primitive() {
-    let scene = Scene::from_triangles("one", vec![tri([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0])]);
+    let scene = Scene::from_triangles(
+        "one",
+        vec![Triangle::from_corners(
+            [0.0; 3],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+        )],
+    );
     let index = build("bvh", &scene);
     assert_eq!((index.info().nodes, index.info().leaves), (1, 1));
     let hit = index
@@ -125,15 +128,19 @@ fn zero_area_triangles() {
         .map(|i| {
             let x = i as f32 * 0.05;
             if i % 3 == 0 {
-                tri([x, 0.0, 0.0], [x, 0.0, 0.0], [x, 0.0, 0.0]) // a point
+                Triangle::from_corners([x, 0.0, 0.0], [x, 0.0, 0.0], [x, 0.0, 0.0]) // a point
             } else if i % 3 == 1 {
-                tri([x, 0.0, 0.0], [x, 1.0, 0.0], [x, 2.0, 0.0]) // a segment
+                Triangle::from_corners([x, 0.0, 0.0], [x, 1.0, 0.0], [x, 2.0, 0.0]) // a segment
             } else {
-                tri([x, -1.0, -1.0], [x, 1.0, -1.0], [x, 0.0, 1.0])
+                Triangle::from_corners([x, -1.0, -1.0], [x, 1.0, -1.0], [x, 0.0, 1.0])
             }
         })
         .collect();
-    tris.push(tri([5.0, 5.0, 5.0], [5.0, 5.0, 5.0], [5.0, 5.0, 5.0]));
+    tris.push(Triangle::from_corners(
+        [5.0, 5.0, 5.0],
+        [5.0, 5.0, 5.0],
+        [5.0, 5.0, 5.0],
+    ));
     let scene = Scene::from_triangles("zero area", tris);
     assert!(scene.degenerate_triangles() > 100);
     assert_all_agree(&preset_specs(), &scene, &rays_for(&scene, 1000));
@@ -146,8 +153,12 @@ fn flat_scene_of_zero_thickness() {
     for i in 0..20 {
         for j in 0..20 {
             let (x, y) = (i as f32, j as f32);
-            tris.push(tri([x, y, 0.5], [x + 1.0, y, 0.5], [x, y + 1.0, 0.5]));
-            tris.push(tri(
+            tris.push(Triangle::from_corners(
+                [x, y, 0.5],
+                [x + 1.0, y, 0.5],
+                [x, y + 1.0, 0.5],
+            ));
+            tris.push(Triangle::from_corners(
                 [x + 1.0, y, 0.5],
                 [x + 1.0, y + 1.0, 0.5],
                 [x, y + 1.0, 0.5],
@@ -191,7 +202,7 @@ fn depth_is_capped_on_exponentially_spaced_primitives() {
         .map(|i| {
             let x = 0.8f32.powi(i);
             let s = x * 0.05;
-            tri([x, -s, -s], [x, s, -s], [x, 0.0, s])
+            Triangle::from_corners([x, -s, -s], [x, s, -s], [x, 0.0, s])
         })
         .collect();
     let scene = Scene::from_triangles("exponential", tris);

@@ -7,7 +7,6 @@ mod common;
 use accelbench::geometry::Triangle;
 use accelbench::index::{Bvh4, Bvh8, BvhParams, Index};
 use accelbench::scene::{Scene, Triangles, generators};
-use glam::Vec3A;
 
 /// Leaf sizes 1..=8 and node widths 2..=`max_children` all occur in the wide trees of the
 /// agreement scenes with `leaf_size` 1 to 8 and a cheap or an expensive node step (which makes
@@ -78,11 +77,7 @@ fn scene_of(name: &str, triangles: Vec<Triangle>) -> Scene {
 
 #[test]
 fn one_triangle_and_coincident_duplicates() {
-    let t = Triangle::new(
-        Vec3A::new(0.0, 0.0, 0.0),
-        Vec3A::new(1.0, 0.0, 0.0),
-        Vec3A::new(0.0, 1.0, 0.0),
-    );
+    let t = Triangle::from_corners([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
     for scene in [
         scene_of("one", vec![t]),
         scene_of("duplicates", vec![t; 40]),

@@ -215,11 +215,7 @@ mod tests {
     /// On easy rays each f64 mirror agrees with its f32 original to f32 precision.
     #[test]
     fn mirrors_agree_with_the_f32_originals() {
-        let tri = Triangle::new(
-            Vec3A::new(0.0, 0.0, 2.0),
-            Vec3A::new(4.0, 0.1, 2.5),
-            Vec3A::new(0.2, 4.0, 1.5),
-        );
+        let tri = Triangle::from_corners([0.0, 0.0, 2.0], [4.0, 0.1, 2.5], [0.2, 4.0, 1.5]);
         let s = Sphere::new(Vec3A::new(0.5, 0.7, 6.0), 1.3);
         let f64s: [(TriangleKernelKind, Mirror); 4] = [
             (TriangleKernelKind::PlaneEdges, plane_edges),

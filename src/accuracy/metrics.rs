@@ -135,18 +135,12 @@ pub fn rate(n: usize, of: usize) -> f64 {
 mod tests {
     use super::*;
     use crate::geometry::Triangle;
-    use glam::{Vec3, Vec3A};
+    use glam::Vec3;
 
     #[test]
     fn scores_misses_hits_wrong_primitives_and_errors() {
         // Two parallel triangles at z = 2 and z = 3 over the same square corner.
-        let tri = |z: f32| {
-            Triangle::new(
-                Vec3A::new(0.0, 0.0, z),
-                Vec3A::new(4.0, 0.0, z),
-                Vec3A::new(0.0, 4.0, z),
-            )
-        };
+        let tri = |z: f32| Triangle::from_corners([0.0, 0.0, z], [4.0, 0.0, z], [0.0, 4.0, z]);
         let prims = Prims::Tris(vec![tri(2.0), tri(3.0)]);
         let spheres: Vec<_> = (0..2).map(|i| prims.bounding_sphere(i)).collect();
         let ray = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), Vec3::Z).unwrap();
@@ -180,11 +174,7 @@ mod tests {
         // Triangle 0 lies in z = 2, triangle 1 in z = 2 + x / 2: a ray up through x = 2^-30
         // meets 0 at t = 2 and 1 at t = 2 + 2^-31, which rounds to the same `f32`.
         let corners = |z0: f32, z1: f32| {
-            Triangle::new(
-                Vec3A::new(0.0, 0.0, z0),
-                Vec3A::new(4.0, 0.0, z1),
-                Vec3A::new(0.0, 4.0, z0),
-            )
+            Triangle::from_corners([0.0, 0.0, z0], [4.0, 0.0, z1], [0.0, 4.0, z0])
         };
         let prims = Prims::Tris(vec![corners(2.0, 2.0), corners(2.0, 4.0)]);
         let spheres: Vec<_> = (0..2).map(|i| prims.bounding_sphere(i)).collect();

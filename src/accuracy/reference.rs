@@ -143,11 +143,7 @@ mod tests {
     use glam::Vec3;
 
     fn tri() -> Triangle {
-        Triangle::new(
-            Vec3A::new(0.0, 0.0, 2.0),
-            Vec3A::new(4.0, 0.0, 2.0),
-            Vec3A::new(0.0, 4.0, 2.0),
-        )
+        Triangle::from_corners([0.0, 0.0, 2.0], [4.0, 0.0, 2.0], [0.0, 4.0, 2.0])
     }
 
     #[test]

@@ -160,11 +160,7 @@ mod tests {
     #[test]
     fn big_triangle_is_cut_to_its_slice_of_the_box() {
         // The plane z = 0.5 through the whole box: the part inside is the square at z = 0.5.
-        let big = Triangle::new(
-            Vec3A::new(-10.0, -10.0, 0.5),
-            Vec3A::new(10.0, -10.0, 0.5),
-            Vec3A::new(0.0, 20.0, 0.5),
-        );
+        let big = Triangle::from_corners([-10.0, -10.0, 0.5], [10.0, -10.0, 0.5], [0.0, 20.0, 0.5]);
         let b = triangle_clipped_bounds(&big, &unit());
         assert_eq!(b.min, Vec3A::new(0.0, 0.0, 0.5));
         assert_eq!(b.max, Vec3A::new(1.0, 1.0, 0.5));
@@ -174,11 +170,7 @@ mod tests {
     fn diagonal_triangle_is_tighter_than_box_overlap() {
         // Passes the box corner diagonally: its bounds overlap the box, the triangle only
         // touches a small corner region.
-        let t = Triangle::new(
-            Vec3A::new(0.4, -0.5, 0.5),
-            Vec3A::new(2.0, 1.1, 0.5),
-            Vec3A::new(2.0, -0.5, 0.5),
-        );
+        let t = Triangle::from_corners([0.4, -0.5, 0.5], [2.0, 1.1, 0.5], [2.0, -0.5, 0.5]);
         let b = triangle_clipped_bounds(&t, &unit());
         let naive = t.bounds().intersection(unit());
         assert!(contains(&naive, &b));
@@ -196,11 +188,7 @@ mod tests {
         );
         assert!(triangle_clipped_bounds(&far, &unit()).is_empty());
         // Touching the face x = 1 with one vertex: a point.
-        let touch = Triangle::new(
-            Vec3A::new(1.0, 0.5, 0.5),
-            Vec3A::new(2.0, 0.5, 0.5),
-            Vec3A::new(2.0, 0.6, 0.5),
-        );
+        let touch = Triangle::from_corners([1.0, 0.5, 0.5], [2.0, 0.5, 0.5], [2.0, 0.6, 0.5]);
         let b = triangle_clipped_bounds(&touch, &unit());
         assert!(b.contains(Vec3A::new(1.0, 0.5, 0.5)), "{b:?}");
     }

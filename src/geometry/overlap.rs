@@ -82,34 +82,18 @@ mod tests {
         );
         assert!(triangle_overlaps_box(&inside, &unit()));
         // Big triangle whose plane cuts the box although no vertex is inside.
-        let big = Triangle::new(
-            Vec3A::new(-10.0, -10.0, 0.5),
-            Vec3A::new(10.0, -10.0, 0.5),
-            Vec3A::new(0.0, 20.0, 0.5),
-        );
+        let big = Triangle::from_corners([-10.0, -10.0, 0.5], [10.0, -10.0, 0.5], [0.0, 20.0, 0.5]);
         assert!(triangle_overlaps_box(&big, &unit()));
         // Bounding boxes overlap, the triangle does not: it passes the corner diagonally.
-        let corner = Triangle::new(
-            Vec3A::new(1.5, -0.5, 0.5),
-            Vec3A::new(2.5, 0.5, 0.5),
-            Vec3A::new(1.6, 0.9, 0.5),
-        );
+        let corner = Triangle::from_corners([1.5, -0.5, 0.5], [2.5, 0.5, 0.5], [1.6, 0.9, 0.5]);
         assert!(!triangle_overlaps_box(&corner, &unit()));
-        let diag = Triangle::new(
-            Vec3A::new(1.2, -0.5, 0.2),
-            Vec3A::new(-0.5, 1.2, 0.2),
-            Vec3A::new(2.0, 2.0, 0.2),
-        );
+        let diag = Triangle::from_corners([1.2, -0.5, 0.2], [-0.5, 1.2, 0.2], [2.0, 2.0, 0.2]);
         assert!(!triangle_overlaps_box(
             &diag,
             &Aabb::new(Vec3A::ZERO, Vec3A::splat(0.3))
         ));
         // Touching a face exactly counts (closed boxes).
-        let touching = Triangle::new(
-            Vec3A::new(1.0, 0.2, 0.2),
-            Vec3A::new(2.0, 0.2, 0.2),
-            Vec3A::new(1.0, 0.8, 0.2),
-        );
+        let touching = Triangle::from_corners([1.0, 0.2, 0.2], [2.0, 0.2, 0.2], [1.0, 0.8, 0.2]);
         assert!(triangle_overlaps_box(&touching, &unit()));
         // Degenerate (a segment through the box).
         let seg = Triangle::new(Vec3A::splat(-1.0), Vec3A::splat(2.0), Vec3A::splat(2.0));

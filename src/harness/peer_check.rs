@@ -133,17 +133,11 @@ pub fn classify(
 mod tests {
     use super::*;
     use crate::geometry::Triangle;
-    use glam::{Vec3, Vec3A};
+    use glam::Vec3;
 
     /// Two triangles in the planes z = 1 and z = 2 across the z axis, ray from the origin up z.
     fn setup() -> (Scene, Ray) {
-        let tri = |z: f32| {
-            Triangle::new(
-                Vec3A::new(-1.0, -1.0, z),
-                Vec3A::new(1.0, -1.0, z),
-                Vec3A::new(0.0, 1.0, z),
-            )
-        };
+        let tri = |z: f32| Triangle::from_corners([-1.0, -1.0, z], [1.0, -1.0, z], [0.0, 1.0, z]);
         let scene = Scene::from_triangles("two", vec![tri(1.0), tri(2.0)]);
         (scene, Ray::infinite(Vec3::ZERO, Vec3::Z).unwrap())
     }

@@ -291,10 +291,10 @@ pub fn all_cases(prims: usize, n: usize) -> Vec<Case> {
 
     let tri = Scene::from_triangles(
         "single-triangle",
-        vec![Triangle::new(
-            Vec3A::new(0.1, 0.2, 0.3),
-            Vec3A::new(0.9, 0.25, 0.35),
-            Vec3A::new(0.4, 0.8, 0.6),
+        vec![Triangle::from_corners(
+            [0.1, 0.2, 0.3],
+            [0.9, 0.25, 0.35],
+            [0.4, 0.8, 0.6],
         )],
     );
     let mut tri_rays = protocol(&tri, n / 2);
@@ -334,10 +334,10 @@ pub fn all_cases(prims: usize, n: usize) -> Vec<Case> {
     }
 
     let mut giant = mixed.clone();
-    giant.triangles.push(Triangle::new(
-        Vec3A::new(-500.0, 0.5, -500.0),
-        Vec3A::new(500.0, 0.5, -500.0),
-        Vec3A::new(0.0, 0.5, 700.0),
+    giant.triangles.push(Triangle::from_corners(
+        [-500.0, 0.5, -500.0],
+        [500.0, 0.5, -500.0],
+        [0.0, 0.5, 700.0],
     ));
     giant
         .spheres

@@ -13,11 +13,7 @@ use std::sync::{Arc, Mutex};
 /// Scenes that have broken naive builders: all one triangle, zero-area triangles (points and
 /// segments), many triangles sharing one centroid, all in one plane.
 pub fn degenerate_scenes() -> Vec<Scene> {
-    let t = Triangle::new(
-        Vec3A::new(0.0, 0.0, 0.0),
-        Vec3A::new(1.0, 0.0, 0.2),
-        Vec3A::new(0.0, 1.0, 0.4),
-    );
+    let t = Triangle::from_corners([0.0, 0.0, 0.0], [1.0, 0.0, 0.2], [0.0, 1.0, 0.4]);
     let duplicates = vec![t; 500];
     let mut zero_area = Vec::new();
     for i in 0..300 {

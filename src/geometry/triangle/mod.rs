@@ -33,6 +33,12 @@ impl Triangle {
         Triangle { v: [a, b, c] }
     }
 
+    /// A triangle from its corners as `[x, y, z]` arrays (for literals in tests and
+    /// generators).
+    pub fn from_corners(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> Triangle {
+        Triangle::new(Vec3A::from(a), Vec3A::from(b), Vec3A::from(c))
+    }
+
     #[inline]
     pub fn bounds(&self) -> Aabb {
         Aabb {
@@ -157,11 +163,7 @@ mod tests {
     use glam::Vec3;
 
     fn tri() -> Triangle {
-        Triangle::new(
-            Vec3A::new(0.0, 0.0, 2.0),
-            Vec3A::new(4.0, 0.0, 2.0),
-            Vec3A::new(0.0, 4.0, 2.0),
-        )
+        Triangle::from_corners([0.0, 0.0, 2.0], [4.0, 0.0, 2.0], [0.0, 4.0, 2.0])
     }
 
     fn all(ray: &Ray) -> [Option<f32>; 5] {

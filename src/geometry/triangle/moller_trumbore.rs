@@ -2,11 +2,7 @@
 //! products sharing `p = d x e2` and `q = s x e1`. Fast, not watertight: rays through shared
 //! edges can slip between the two triangles.
 
-use super::{Triangle, TriangleKernel, in_interval};
-use crate::geometry::Ray;
-
-#[derive(Debug, Clone, Copy, Default)]
-pub struct MollerTrumbore;
+use super::{Ray, Triangle, TriangleKernel, in_interval};
 
 impl TriangleKernel for MollerTrumbore {
     const NAME: &'static str = "moller-trumbore";
@@ -34,3 +30,7 @@ impl TriangleKernel for MollerTrumbore {
         in_interval(e2.dot(q) * inv_det, ray, t_max)
     }
 }
+
+/// The Möller–Trumbore kernel (see the module documentation).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct MollerTrumbore;

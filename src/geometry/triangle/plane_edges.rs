@@ -2,11 +2,7 @@
 //! method): `t = n.(v0 - o) / n.d`, `p = o + t d`, inside when `((v_{i+1} - v_i) x (p - v_i)).n
 //! >= 0` for all three edges.
 
-use super::{Triangle, TriangleKernel, in_interval};
-use crate::geometry::Ray;
-
-#[derive(Debug, Clone, Copy, Default)]
-pub struct PlaneEdges;
+use super::{Ray, Triangle, TriangleKernel, in_interval};
 
 impl TriangleKernel for PlaneEdges {
     const NAME: &'static str = "plane-edges";
@@ -31,3 +27,7 @@ impl TriangleKernel for PlaneEdges {
         Some(t)
     }
 }
+
+/// The plane-then-edges kernel (see the module documentation).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PlaneEdges;

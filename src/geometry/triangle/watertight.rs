@@ -6,11 +6,7 @@
 //! the triangles: no leaks. When an edge function is exactly zero it is recomputed in `f64`, as
 //! the paper prescribes, so the sign test is exact for `f32` inputs.
 
-use super::{Triangle, TriangleKernel, in_interval};
-use crate::geometry::Ray;
-
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Watertight;
+use super::{Ray, Triangle, TriangleKernel, in_interval};
 
 impl TriangleKernel for Watertight {
     const NAME: &'static str = "watertight";
@@ -52,3 +48,7 @@ impl TriangleKernel for Watertight {
         in_interval(t_scaled / det, ray, t_max)
     }
 }
+
+/// The watertight kernel of Woop, Benthin and Wald (see the module documentation).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Watertight;

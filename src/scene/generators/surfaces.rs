@@ -89,16 +89,8 @@ pub fn teapot_in_stadium(n: usize) -> Vec<Triangle> {
         .collect();
     let r = 1.0f32;
     let g = -0.0015f32;
-    tris.push(Triangle::new(
-        Vec3A::new(-r, g, -r),
-        Vec3A::new(r, g, r),
-        Vec3A::new(r, g, -r),
-    ));
-    tris.push(Triangle::new(
-        Vec3A::new(-r, g, -r),
-        Vec3A::new(-r, g, r),
-        Vec3A::new(r, g, r),
-    ));
+    tris.push(Triangle::from_corners([-r, g, -r], [r, g, r], [r, g, -r]));
+    tris.push(Triangle::from_corners([-r, g, -r], [-r, g, r], [r, g, r]));
     let panels = STADIUM_PANELS;
     for i in 0..panels {
         let a0 = i as f32 / panels as f32 * std::f32::consts::TAU;

@@ -88,11 +88,7 @@ fn rays_at_and_one_ulp_beside_vertices_and_edges_decide_exactly() {
 fn axis_aligned_rays_through_exact_vertices_and_edges() {
     // Integer corners: rays along z through grid points land exactly on edges and vertices,
     // where every edge function sign is zero or tiny and the filter cannot decide.
-    let tri = Triangle::new(
-        Vec3A::new(0.0, 0.0, 2.0),
-        Vec3A::new(4.0, 0.0, 2.0),
-        Vec3A::new(0.0, 4.0, 2.0),
-    );
+    let tri = Triangle::from_corners([0.0, 0.0, 2.0], [4.0, 0.0, 2.0], [0.0, 4.0, 2.0]);
     let before = fallback_count();
     for x in -1..=5 {
         for y in -1..=5 {
