@@ -5,9 +5,8 @@ mod common;
 
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::index::{IndexSpec, build_index, index_names};
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use std::time::Duration;
 
 fn build(c: &mut Criterion) {
     let scene = common::bench_scene();
@@ -23,11 +22,8 @@ fn build(c: &mut Criterion) {
                 .expect("pool"),
         ),
     ] {
-        let mut g = c.benchmark_group(format!("build/{}/{threads}t", scene.name));
-        g.throughput(Throughput::Elements(scene.len() as u64));
-        g.sample_size(10);
-        g.warm_up_time(Duration::from_millis(500));
-        g.measurement_time(Duration::from_secs(3));
+        let name = format!("build/{}/{threads}t", scene.name);
+        let mut g = common::group(c, name, scene.len(), 0.5, 3.0);
         for name in index_names().into_iter().filter(|n| *n != "brute") {
             let spec = IndexSpec::named(name);
             g.bench_function(BenchmarkId::from_parameter(name), |b| {

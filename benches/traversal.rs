@@ -5,20 +5,16 @@ mod common;
 
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::index::{IndexSpec, build_index, index_names};
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use std::time::Duration;
 
 fn traversal(c: &mut Criterion) {
     let scene = common::bench_scene();
     let geom = scene.geometry();
     let pool = common::one_thread();
     for (set, rays) in common::protocol_sets(&scene) {
-        let mut g = c.benchmark_group(format!("traversal/{}/{set}", scene.name));
-        g.throughput(Throughput::Elements(rays.len() as u64));
-        g.sample_size(10);
-        g.warm_up_time(Duration::from_secs(1));
-        g.measurement_time(Duration::from_secs(5));
+        let name = format!("traversal/{}/{set}", scene.name);
+        let mut g = common::group(c, name, rays.len(), 1.0, 5.0);
         for name in index_names().into_iter().filter(|n| *n != "brute") {
             let index = pool
                 .install(|| {

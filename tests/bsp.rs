@@ -125,28 +125,18 @@ fn degenerate_input_terminates_and_agrees() {
     }
 }
 
+/// Mailboxing, the structure figures and typed parameter errors (`partition_kit`).
 #[test]
-fn each_primitive_tested_at_most_once_per_ray() {
-    assert_tests_each_primitive_once::<Bsp>();
-}
-
-#[test]
-fn structure_figures_are_consistent() {
-    assert_structure_figures::<Bsp>("bsp", 24);
-}
-
-#[test]
-fn bad_parameters_are_typed_errors() {
-    assert_bad_parameters(&[
-        ("bsp:intersect_cost=0.0", "intersect_cost"),
-        ("bsp:traversal_cost=inf", "traversal_cost"),
-        ("bsp:sweep=false,plane_candidates=0", "candidates"),
-        ("bsp:plane_candidates=100000", "candidates"),
-        ("bsp:max_depth=1000", "max_depth"),
-        ("bsp:leaf_size=0", "leaf_size"),
-        ("bsp:empty_bonus=-0.5", "empty_bonus"),
-        ("bsp:planes=3", "unknown field"),
-    ]);
+fn partition_basics_hold() {
+    assert_partition_basics::<Bsp>(
+        "bsp",
+        24,
+        &[
+            ("sweep=false,plane_candidates=0", "candidates"),
+            ("plane_candidates=100000", "candidates"),
+            ("planes=3", "unknown field"),
+        ],
+    );
 }
 
 /// Scored by the exact areas of the convex cells, the primitives' own planes win some splits

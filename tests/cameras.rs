@@ -86,10 +86,7 @@ fn a_depth_of_field_render_is_byte_identical_through_every_index() {
     use accelbench::render::{Filter, RenderOptions, Sampling, render_shaded_with};
     let scene = generators::generate("mixed", 1500, 3).unwrap();
     let geom = scene.geometry();
-    let opts = RenderOptions {
-        width: 24,
-        height: 16,
-    };
+    let opts = RenderOptions::new(24, 16);
     let sampling = Sampling {
         spp: 16,
         filter: Filter::Tent,

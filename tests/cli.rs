@@ -40,18 +40,36 @@ fn bad_scenes_are_explained() {
         &["info", "--scene", "/nonexistent/missing.obj"],
         &["missing.obj", "cannot read"],
     );
-    let garbage = file(d, "garbage.obj", b"this is not an obj file\n\x01\x02\n");
-    fails_with(
-        &["info", "--scene", &garbage],
-        &["garbage.obj", "'v' and 'f' lines"],
-    );
-    let nan = file(d, "nan.obj", b"v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
-    fails_with(&["info", "--scene", &nan], &["nan.obj", "line 2", "NaN"]);
-    let empty = file(d, "empty.obj", b"");
-    fails_with(
-        &["info", "--scene", &empty],
-        &["empty.obj", "no primitives"],
-    );
+    // Bad scene files: each error names the file and says what is wrong.
+    let bad_files: [(&str, &[u8], &[&str]); 5] = [
+        (
+            "garbage.obj",
+            b"this is not an obj file\n\x01\x02\n",
+            &["'v' and 'f' lines"],
+        ),
+        (
+            "nan.obj",
+            b"v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n",
+            &["line 2", "NaN"],
+        ),
+        ("empty.obj", b"", &["no primitives"]),
+        (
+            "bad.toml",
+            b"[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\ncolour = 2\n",
+            &["unknown field `colour`"],
+        ),
+        (
+            "radius.toml",
+            b"[[sphere]]\ncenter = [0, 0, 0]\nradius = -1\n",
+            &["radius > 0"],
+        ),
+    ];
+    for (name, text, expected) in bad_files {
+        let scene = file(d, name, text);
+        let mut expected = expected.to_vec();
+        expected.insert(0, name);
+        fails_with(&["info", "--scene", &scene], &expected);
+    }
     fails_with(
         &["info", "--scene", "teapot"],
         &["unknown scene 'teapot'", "icosphere", ".toml"],
@@ -60,24 +78,6 @@ fn bad_scenes_are_explained() {
     fails_with(
         &["info", "--scene", "soup:size=3"],
         &["unknown parameter 'size'"],
-    );
-    let toml = file(
-        d,
-        "bad.toml",
-        b"[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\ncolour = 2\n",
-    );
-    fails_with(
-        &["info", "--scene", &toml],
-        &["bad.toml", "unknown field `colour`"],
-    );
-    let radius = file(
-        d,
-        "radius.toml",
-        b"[[sphere]]\ncenter = [0, 0, 0]\nradius = -1\n",
-    );
-    fails_with(
-        &["info", "--scene", &radius],
-        &["radius.toml", "radius > 0"],
     );
 }
 

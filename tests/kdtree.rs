@@ -60,24 +60,8 @@ fn degenerate_input_terminates_and_agrees() {
     }
 }
 
+/// Mailboxing, the structure figures and typed parameter errors (`partition_kit`).
 #[test]
-fn each_primitive_tested_at_most_once_per_ray() {
-    assert_tests_each_primitive_once::<KdTree>();
-}
-
-#[test]
-fn structure_figures_are_consistent() {
-    assert_structure_figures::<KdTree>("kdtree", 8);
-}
-
-#[test]
-fn bad_parameters_are_typed_errors() {
-    assert_bad_parameters(&[
-        ("kdtree:intersect_cost=-1.0", "intersect_cost"),
-        ("kdtree:traversal_cost=nan", "traversal_cost"),
-        ("kdtree:empty_bonus=1.0", "empty_bonus"),
-        ("kdtree:max_depth=65", "max_depth"),
-        ("kdtree:leaf_size=0", "leaf_size"),
-        ("kdtree:leafsize=3", "unknown field"),
-    ]);
+fn partition_basics_hold() {
+    assert_partition_basics::<KdTree>("kdtree", 8, &[]);
 }

@@ -58,10 +58,7 @@ fn lit_mixed() -> Scene {
 #[test]
 fn shaded_images_are_identical_across_indices_and_threads() {
     let scene = lit_mixed();
-    let opts = RenderOptions {
-        width: 48,
-        height: 36,
-    };
+    let opts = RenderOptions::new(48, 36);
     let brute = build("brute", &scene);
     let reference = on_threads(1, || render_shaded(&scene, brute.as_ref(), &opts)).unwrap();
     assert_eq!((reference.width(), reference.height()), (48, 36));
@@ -89,10 +86,7 @@ fn shaded_images_are_identical_across_indices_and_threads() {
 #[test]
 fn heat_map_pixels_are_the_counting_statistics_of_the_camera_rays() {
     let scene = generators::generate("mixed", 300, 5).unwrap();
-    let opts = RenderOptions {
-        width: 40,
-        height: 30,
-    };
+    let opts = RenderOptions::new(40, 30);
     let cam = view_camera(&scene, &opts).unwrap();
     let rays: Vec<_> = (0..30)
         .flat_map(|j| (0..40).map(move |i| (i, j)))
@@ -164,10 +158,7 @@ material = "floor"
 /// Per floor pixel (camera ray hits the floor in both scenes), the shaded byte with the
 /// occluder and without it.
 fn floor_pixels(dir: &Path, light: &str) -> Vec<(u8, u8)> {
-    let opts = RenderOptions {
-        width: 64,
-        height: 64,
-    };
+    let opts = RenderOptions::new(64, 64);
     let with = floor_scene(dir, light, true);
     let without = floor_scene(dir, light, false);
     let (iw, io) = (build("brute", &with), build("brute", &without));
@@ -300,10 +291,7 @@ fn shape_materials_reach_the_render() {
         let path = dir.path().join("box.toml");
         std::fs::write(&path, toml).unwrap();
         let scene = load_scene(path.to_str().unwrap()).unwrap();
-        let opts = RenderOptions {
-            width: 16,
-            height: 16,
-        };
+        let opts = RenderOptions::new(16, 16);
         let img = render_shaded(&scene, build("bvh", &scene).as_ref(), &opts).unwrap();
         img.pixel(8, 8)
     };

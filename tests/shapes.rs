@@ -235,10 +235,7 @@ fn shapes_scene_renders_identically_through_every_index() {
     use accelbench::index::{IndexSpec, build_index};
     use accelbench::render::{RenderOptions, render_shaded};
     let scene = generators::generate("shapes", 300, 3).unwrap();
-    let opts = RenderOptions {
-        width: 40,
-        height: 40,
-    };
+    let opts = RenderOptions::new(40, 40);
     let mut first = None;
     for name in index_names().into_iter().filter(|n| !is_peer(n)) {
         let index = build_index(

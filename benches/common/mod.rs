@@ -41,3 +41,20 @@ pub fn one_thread() -> rayon::ThreadPool {
         .build()
         .expect("a one-thread pool")
 }
+
+/// A criterion group of ten samples counting `elements` per iteration, with the given
+/// warm-up and measurement times (seconds): the long ray sets and builds need few samples.
+pub fn group<'a>(
+    c: &'a mut criterion::Criterion,
+    name: String,
+    elements: usize,
+    warm_up: f64,
+    measure: f64,
+) -> criterion::BenchmarkGroup<'a, criterion::measurement::WallTime> {
+    let mut g = c.benchmark_group(name);
+    g.throughput(criterion::Throughput::Elements(elements as u64));
+    g.sample_size(10);
+    g.warm_up_time(std::time::Duration::from_secs_f64(warm_up));
+    g.measurement_time(std::time::Duration::from_secs_f64(measure));
+    g
+}

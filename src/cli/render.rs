@@ -53,10 +53,7 @@ pub struct RenderArgs {
 }
 
 pub fn run(a: RenderArgs) -> anyhow::Result<()> {
-    let opts = RenderOptions {
-        width: a.width,
-        height: a.height,
-    };
+    let opts = RenderOptions::new(a.width, a.height);
     opts.validate()?;
     let sampling = Sampling {
         spp: a.spp,

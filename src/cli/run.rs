@@ -88,10 +88,7 @@ impl ScenePictures {
         if self.side == 0 || fast.is_empty() || self.error.is_some() {
             return;
         }
-        let opts = RenderOptions {
-            width: self.side,
-            height: self.side,
-        };
+        let opts = RenderOptions::new(self.side, self.side);
         let r = std::fs::create_dir_all(&self.dir)
             .map_err(anyhow::Error::from)
             .and_then(|()| Ok(write_scene_pictures(scene, &fast, &self.dir, &opts)?));

@@ -77,7 +77,7 @@ pub fn trace_chunk<Q: Query, I: Index, G: Geometry, S: Stats>(
     stats: &mut [S],
 ) {
     match mode {
-        TraceMode::Single => Q::chunk(index, geom, rays, out, stats),
+        TraceMode::Single => Q::batch::<false, _, _, _>(index, geom, rays, out, stats),
         TraceMode::LastHit => {
             let mut range = KernelRange::new(geom.clone());
             let mut last = None;
@@ -92,7 +92,7 @@ pub fn trace_chunk<Q: Query, I: Index, G: Geometry, S: Stats>(
                 .zip(out.chunks_mut(n))
                 .zip(stats.chunks_mut(n))
             {
-                Q::packet(index, geom, r, o, s);
+                Q::batch::<true, _, _, _>(index, geom, r, o, s);
             }
         }
     }

@@ -11,16 +11,9 @@ use crate::scene::Geometry;
 pub trait Query: Send + Sync + 'static {
     /// One ray's answer (`Option<Hit>` or `bool`).
     type Answer: Copy + Send + Sync;
-    /// A chunk of a batch ray by ray ([`Index::closest_hits_chunk`] or `any_hits_chunk`).
-    fn chunk<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &G,
-        rays: &[Ray],
-        out: &mut [Self::Answer],
-        stats: &mut [S],
-    );
-    /// A packet ([`Index::closest_hits_packet`] or `any_hits_packet`).
-    fn packet<I: Index, G: Geometry, S: Stats>(
+    /// A chunk of a batch ray by ray ([`Index::closest_hits_chunk`] or `any_hits_chunk`), or
+    /// with `PACKET` one packet ([`Index::closest_hits_packet`] or `any_hits_packet`).
+    fn batch<const PACKET: bool, I: Index, G: Geometry, S: Stats>(
         i: &I,
         g: &G,
         rays: &[Ray],
@@ -43,70 +36,50 @@ pub enum Closest {}
 /// Whether any primitive is hit (shadow rays).
 pub enum AnyHit {}
 
-impl Query for Closest {
-    type Answer = Option<Hit>;
-    #[inline]
-    fn chunk<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &G,
-        r: &[Ray],
-        o: &mut [Self::Answer],
-        s: &mut [S],
-    ) {
-        i.closest_hits_chunk(g, r, o, s)
-    }
-    #[inline]
-    fn packet<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &G,
-        r: &[Ray],
-        o: &mut [Self::Answer],
-        s: &mut [S],
-    ) {
-        i.closest_hits_packet(g, r, o, s)
-    }
-    #[inline]
-    fn last_hit<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &mut KernelRange<G>,
-        r: &Ray,
-        l: &mut Option<u32>,
-        s: &mut S,
-    ) -> Self::Answer {
-        last_hit::closest_hit(i, g, r, l, s)
-    }
+/// `impl Query for $kind`: the [`Index`] methods and the last-hit function that answer it.
+macro_rules! answered_by {
+    ($kind:ty, $answer:ty, $chunk:ident, $packet:ident, $last_hit:path) => {
+        impl Query for $kind {
+            type Answer = $answer;
+            #[inline]
+            fn batch<const PACKET: bool, I: Index, G: Geometry, S: Stats>(
+                i: &I,
+                g: &G,
+                r: &[Ray],
+                o: &mut [Self::Answer],
+                s: &mut [S],
+            ) {
+                if PACKET {
+                    i.$packet(g, r, o, s)
+                } else {
+                    i.$chunk(g, r, o, s)
+                }
+            }
+            #[inline]
+            fn last_hit<I: Index, G: Geometry, S: Stats>(
+                i: &I,
+                g: &mut KernelRange<G>,
+                r: &Ray,
+                l: &mut Option<u32>,
+                s: &mut S,
+            ) -> Self::Answer {
+                $last_hit(i, g, r, l, s)
+            }
+        }
+    };
 }
 
-impl Query for AnyHit {
-    type Answer = bool;
-    #[inline]
-    fn chunk<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &G,
-        r: &[Ray],
-        o: &mut [Self::Answer],
-        s: &mut [S],
-    ) {
-        i.any_hits_chunk(g, r, o, s)
-    }
-    #[inline]
-    fn packet<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &G,
-        r: &[Ray],
-        o: &mut [Self::Answer],
-        s: &mut [S],
-    ) {
-        i.any_hits_packet(g, r, o, s)
-    }
-    #[inline]
-    fn last_hit<I: Index, G: Geometry, S: Stats>(
-        i: &I,
-        g: &mut KernelRange<G>,
-        r: &Ray,
-        l: &mut Option<u32>,
-        s: &mut S,
-    ) -> Self::Answer {
-        last_hit::any_hit(i, g, r, l, s)
-    }
-}
+answered_by!(
+    Closest,
+    Option<Hit>,
+    closest_hits_chunk,
+    closest_hits_packet,
+    last_hit::closest_hit
+);
+answered_by!(
+    AnyHit,
+    bool,
+    any_hits_chunk,
+    any_hits_packet,
+    last_hit::any_hit
+);

@@ -10,7 +10,7 @@
 //! let scene = scene::load_scene("stadium:n=20000").unwrap();
 //! let spec = "brute".parse().unwrap();
 //! let idx = index::build_index(&spec, &scene.geometry(), TriangleKernelKind::Watertight).unwrap();
-//! let opts = render::RenderOptions { width: 256, height: 256 };
+//! let opts = render::RenderOptions::new(256, 256);
 //! render::render_shaded(&scene, idx.as_ref(), &opts).unwrap().write_png("shaded.png".as_ref()).unwrap();
 //! let heat = render::render_heatmap(&scene, idx.as_ref(), &opts, render::HeatmapKind::Tests).unwrap();
 //! heat.write_png("tests.png".as_ref()).unwrap();
@@ -52,14 +52,16 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
-        RenderOptions {
-            width: 512,
-            height: 512,
-        }
+        RenderOptions::new(512, 512)
     }
 }
 
 impl RenderOptions {
+    /// An image of `width` x `height` pixels (checked by [`RenderOptions::validate`]).
+    pub fn new(width: u32, height: u32) -> RenderOptions {
+        RenderOptions { width, height }
+    }
+
     /// Checks `1 <= width, height <= MAX_SIDE` and at most [`MAX_PIXELS`] pixels.
     pub fn validate(&self) -> Result<(), RenderError> {
         let (w, h) = (self.width, self.height);

@@ -77,10 +77,7 @@ mod tests {
         )
         .unwrap();
         let dir = tempfile::tempdir().unwrap();
-        let opts = RenderOptions {
-            width: 8,
-            height: 8,
-        };
+        let opts = RenderOptions::new(8, 8);
         let pics = write_scene_pictures(&scene, &[idx.as_ref()], dir.path(), &opts).unwrap();
         let names: Vec<String> = pics
             .iter()

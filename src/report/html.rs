@@ -212,23 +212,10 @@ fn scalable_svg(svg: &str) -> String {
 
 fn verification_details(notes: &RunNotes) -> String {
     let mut s = "<h2>Verification and notes</h2>\n<ul>".to_owned();
-    for v in &notes.verification {
-        let _ = write!(
-            s,
-            "<li>{}: verification, {}: {}</li>",
-            esc(&v.scene),
-            esc(&v.what),
-            esc(&v.reason)
-        );
-    }
-    for n in &notes.notes {
-        let _ = write!(
-            s,
-            "<li>{}: {}: {}</li>",
-            esc(&n.scene),
-            esc(&n.what),
-            esc(&n.reason)
-        );
+    let verification = notes.verification.iter().map(|n| (n, "verification, "));
+    for (n, kind) in verification.chain(notes.notes.iter().map(|n| (n, ""))) {
+        let (scene, what, reason) = (esc(&n.scene), esc(&n.what), esc(&n.reason));
+        let _ = write!(s, "<li>{scene}: {kind}{what}: {reason}</li>");
     }
     s.push_str("</ul>\n");
     s

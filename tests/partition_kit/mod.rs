@@ -242,17 +242,40 @@ pub fn assert_structure_figures<I: Index>(name: &str, node_bytes: usize) {
     assert!(depth <= 5, "depth {depth} within max_depth=4");
 }
 
-/// Each spec fails to build with a parameter error whose message contains the given words.
-pub fn assert_bad_parameters(cases: &[(&str, &str)]) {
+/// `index:params` fails to build with a parameter error whose message contains the given
+/// words, for the shared SAH parameters' bad values and for `own`.
+pub fn assert_bad_parameters(index: &str, own: &[(&str, &str)]) {
     let g = generators::generate("icosphere", 100, 1)
         .unwrap()
         .geometry();
-    for &(spec, says) in cases {
-        let spec: IndexSpec = spec.parse().unwrap();
+    // The SAH parameters both trees share (`SahParams::validate`), then `index`'s own.
+    let shared = [
+        ("intersect_cost=-1.0", "intersect_cost"),
+        ("intersect_cost=0.0", "intersect_cost"),
+        ("traversal_cost=nan", "traversal_cost"),
+        ("traversal_cost=inf", "traversal_cost"),
+        ("empty_bonus=1.0", "empty_bonus"),
+        ("empty_bonus=-0.5", "empty_bonus"),
+        ("max_depth=65", "max_depth"),
+        ("max_depth=1000", "max_depth"),
+        ("leaf_size=0", "leaf_size"),
+        ("leafsize=3", "unknown field"),
+    ];
+    for &(params, says) in shared.iter().chain(own) {
+        let spec: IndexSpec = format!("{index}:{params}").parse().unwrap();
         let err = build_index(&spec, &g, TriangleKernelKind::Watertight)
             .err()
             .unwrap_or_else(|| panic!("{spec} must fail"));
         assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
         assert!(err.to_string().contains(says), "{spec}: {err}");
     }
+}
+
+/// What every binary space partition `I` (registered as `index`, nodes of `node_bytes`)
+/// promises: [`assert_tests_each_primitive_once`], [`assert_structure_figures`] and
+/// [`assert_bad_parameters`] with its own bad parameters `own_bad`.
+pub fn assert_partition_basics<I: Index>(index: &str, node_bytes: usize, own_bad: &[(&str, &str)]) {
+    assert_tests_each_primitive_once::<I>();
+    assert_structure_figures::<I>(index, node_bytes);
+    assert_bad_parameters(index, own_bad);
 }

@@ -52,6 +52,19 @@ struct Plane {
     axis: Option<usize>,
 }
 
+impl Plane {
+    /// The axis plane `x[axis] = offset`.
+    fn axis(axis: usize, offset: f32) -> Plane {
+        let mut normal = Vec3A::ZERO;
+        normal[axis] = 1.0;
+        Plane {
+            normal,
+            offset,
+            axis: Some(axis),
+        }
+    }
+}
+
 struct Builder<'a, G: Geometry> {
     geom: &'a G,
     limits: &'a Limits,
@@ -220,13 +233,7 @@ impl<G: Geometry> Builder<'_, G> {
             for q in 1..=per_axis {
                 let s = positions[q * (positions.len() - 1) / (per_axis + 1)];
                 if s > cell.min[axis] && s < cell.max[axis] {
-                    let mut normal = Vec3A::ZERO;
-                    normal[axis] = 1.0;
-                    planes.push(Plane {
-                        normal,
-                        offset: s,
-                        axis: Some(axis),
-                    });
+                    planes.push(Plane::axis(axis, s));
                 }
             }
         }
@@ -262,13 +269,7 @@ impl<G: Geometry> Builder<'_, G> {
             if let Some((axis, s, _)) =
                 best_axis_split(n, |i| refs[i].b, cell, self.pad, &w, &mut events)
             {
-                let mut normal = Vec3A::ZERO;
-                normal[axis] = 1.0;
-                planes.push(Plane {
-                    normal,
-                    offset: s,
-                    axis: Some(axis),
-                });
+                planes.push(Plane::axis(axis, s));
             }
         }
         planes.extend(self.candidates(refs, cell));

@@ -105,10 +105,6 @@ impl Partition for BspNode {
     const NAME: &'static str = "bsp";
     type Params = BspParams;
 
-    fn mailbox(params: &BspParams) -> bool {
-        params.mailbox
-    }
-
     fn build<G: Geometry>(
         geom: &G,
         params: &BspParams,
@@ -116,6 +112,10 @@ impl Partition for BspNode {
         pad: f32,
     ) -> Result<Built<BspNode>, BuildError> {
         build::build(geom, root, pad, &params.limits(geom.len())?)
+    }
+
+    fn mailbox(params: &BspParams) -> bool {
+        params.mailbox
     }
 }
 

@@ -71,10 +71,6 @@ impl Partition for KdNode {
     const NAME: &'static str = "kdtree";
     type Params = KdParams;
 
-    fn mailbox(params: &KdParams) -> bool {
-        params.mailbox
-    }
-
     fn build<G: Geometry>(
         geom: &G,
         p: &KdParams,
@@ -89,6 +85,10 @@ impl Partition for KdNode {
             geom.len(),
         )?;
         build::build(geom, root, pad, &sah)
+    }
+
+    fn mailbox(params: &KdParams) -> bool {
+        params.mailbox
     }
 }
 

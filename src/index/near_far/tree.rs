@@ -17,9 +17,6 @@ pub trait Partition: SplitNode {
     const NAME: &'static str;
     /// Typed build parameters (as [`Index::Params`]).
     type Params: Default + Clone + Debug + Serialize + DeserializeOwned + Send + Sync;
-    /// Whether the walk keeps a mailbox (each primitive tested at most once per ray) with
-    /// these parameters.
-    fn mailbox(params: &Self::Params) -> bool;
     /// Builds the nodes over all primitives of `geom` in the cell `root` (their bounds), with
     /// classification padding `pad` (world units, > 0).
     fn build<G: Geometry>(
@@ -28,6 +25,9 @@ pub trait Partition: SplitNode {
         root: Aabb,
         pad: f32,
     ) -> Result<Built<Self>, BuildError>;
+    /// Whether the walk keeps a mailbox (each primitive tested at most once per ray) with
+    /// these parameters.
+    fn mailbox(params: &Self::Params) -> bool;
 }
 
 /// A builder's output: depth-first nodes (the child below a plane right after its parent), the
@@ -58,6 +58,15 @@ pub struct NearFarIndex<N> {
 }
 
 impl<N> NearFarIndex<N> {
+    /// The parts the walk reads.
+    fn tree(&self) -> walk::Tree<'_, N> {
+        walk::Tree {
+            nodes: &self.nodes,
+            ids: &self.ids,
+            bounds: &self.bounds,
+        }
+    }
+
     /// The nodes, depth-first.
     pub fn nodes(&self) -> &[N] {
         &self.nodes
@@ -100,21 +109,21 @@ impl<N: Partition> Index for NearFarIndex<N> {
         ray: &Ray,
         stats: &mut S,
     ) -> Option<Hit> {
-        let (nodes, ids, b) = (&self.nodes[..], &self.ids[..], &self.bounds);
+        let tree = self.tree();
         if self.mailbox {
-            walk::closest_hit::<true, _, _, _>(nodes, ids, b, geom, ray, stats)
+            walk::closest_hit::<true, _, _, _>(tree, geom, ray, stats)
         } else {
-            walk::closest_hit::<false, _, _, _>(nodes, ids, b, geom, ray, stats)
+            walk::closest_hit::<false, _, _, _>(tree, geom, ray, stats)
         }
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        let (nodes, ids, b) = (&self.nodes[..], &self.ids[..], &self.bounds);
+        let tree = self.tree();
         if self.mailbox {
-            walk::any_hit::<true, _, _, _>(nodes, ids, b, geom, ray, stats)
+            walk::any_hit::<true, _, _, _>(tree, geom, ray, stats)
         } else {
-            walk::any_hit::<false, _, _, _>(nodes, ids, b, geom, ray, stats)
+            walk::any_hit::<false, _, _, _>(tree, geom, ray, stats)
         }
     }
 

@@ -70,14 +70,20 @@ struct Span {
     t1: f32,
 }
 
-/// Walks the tree `nodes` (root cell `bounds`) front to back, calling
-/// `leaf(ids, stats) -> stop` at each leaf; `bound()` gives the current best `t` (pending spans
-/// starting strictly after it are skipped).
+/// A built tree as the walk reads it: depth-first nodes, the id array its leaves index, the
+/// root cell's box.
+#[derive(Clone, Copy)]
+pub(super) struct Tree<'a, N> {
+    pub nodes: &'a [N],
+    pub ids: &'a [u32],
+    pub bounds: &'a Aabb,
+}
+
+/// Walks `tree` front to back, calling `leaf(ids, stats) -> stop` at each leaf; `bound()` gives
+/// the current best `t` (pending spans starting strictly after it are skipped).
 #[inline(always)]
 fn walk<N: SplitNode, S: Stats>(
-    nodes: &[N],
-    ids: &[u32],
-    bounds: &Aabb,
+    Tree { nodes, ids, bounds }: Tree<'_, N>,
     ray: &Ray,
     stats: &mut S,
     mut leaf: impl FnMut(&[u32], &mut S) -> bool,
@@ -178,9 +184,7 @@ fn with_dedup<const MAILBOX: bool, R>(len: usize, f: impl FnOnce(&mut Mailbox) -
 /// brute force); `MAILBOX`: each primitive tested at most once.
 #[inline]
 pub(super) fn closest_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
-    nodes: &[N],
-    ids: &[u32],
-    bounds: &Aabb,
+    tree: Tree<'_, N>,
     geom: &G,
     ray: &Ray,
     stats: &mut S,
@@ -188,9 +192,7 @@ pub(super) fn closest_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Sta
     with_dedup::<MAILBOX, _>(geom.len(), |mb| {
         let best = std::cell::Cell::new(ClosestHit::new(ray.t_max));
         walk(
-            nodes,
-            ids,
-            bounds,
+            tree,
             ray,
             stats,
             |prims, stats| {
@@ -208,9 +210,7 @@ pub(super) fn closest_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Sta
 /// Whether any primitive is hit (stops at the first).
 #[inline]
 pub(super) fn any_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
-    nodes: &[N],
-    ids: &[u32],
-    bounds: &Aabb,
+    tree: Tree<'_, N>,
     geom: &G,
     ray: &Ray,
     stats: &mut S,
@@ -218,9 +218,7 @@ pub(super) fn any_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
     with_dedup::<MAILBOX, _>(geom.len(), |mb| {
         let mut found = false;
         walk(
-            nodes,
-            ids,
-            bounds,
+            tree,
             ray,
             stats,
             |prims, stats| {

@@ -2,44 +2,41 @@
 //! `traverse!` loop with its SIMD node test, with our kernel and our closest-hit order in the
 //! primitive step.
 
-use super::{ObvhsParams, culling_bound, obvhs_ray, prim_boxes};
-use crate::geometry::{ClosestHit, Hit, Ray};
-use crate::index::{BuildError, Index, IndexInfo, Stats};
-use crate::scene::Geometry;
+use super::{culling_bound, obvhs_ray, tree::ObvhsTree};
+use crate::geometry::Ray;
+use crate::index::{IndexInfo, Stats};
 use glam::UVec2;
+use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb;
 use obvhs::cwbvh::{CwBvh, builder::build_cwbvh, node::CwBvhNode};
 use std::time::Duration;
 
 /// obvhs's `CwBvh` over the scene's primitive bounds.
 #[derive(Clone)]
-pub struct ObvhsCwBvh {
+pub struct CwBvhPeer {
     bvh: CwBvh,
     depth: usize,
     leaves: usize,
 }
 
-impl Index for ObvhsCwBvh {
-    type Params = ObvhsParams;
+impl ObvhsTree for CwBvhPeer {
+    const NAME: &'static str = "obvhs-cwbvh";
 
-    fn build<G: Geometry>(geom: &G, params: &ObvhsParams) -> Result<Self, BuildError> {
-        let boxes = prim_boxes(geom, "obvhs-cwbvh")?;
-        let bvh = build_cwbvh(
-            &boxes,
-            params.preset.build_params(),
-            &mut Duration::default(),
-        );
+    fn build(boxes: &[Aabb], params: BvhBuildParams, time: &mut Duration) -> Self {
+        let bvh = build_cwbvh(boxes, params, time);
         let (depth, leaves) = shape(&bvh);
-        Ok(ObvhsCwBvh { bvh, depth, leaves })
+        CwBvhPeer { bvh, depth, leaves }
     }
 
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
+    /// obvhs's `traverse!` loop with its SIMD node test. `prim` returning `false` leaves the
+    /// current leaf's primitives only: obvhs's loop has no exit from the whole walk.
+    #[inline(always)]
+    fn walk<S: Stats>(
         &self,
-        geom: &G,
         ray: &Ray,
         stats: &mut S,
-    ) -> Option<Hit> {
-        let mut best = ClosestHit::new(ray.t_max);
+        mut prim: impl FnMut(u32, &mut S, &mut obvhs::ray::Ray) -> bool,
+    ) {
         let mut oray = obvhs_ray(ray, culling_bound(ray.t_max));
         let mut state = self.bvh.new_traversal(oray.direction);
         let mut node: &CwBvhNode;
@@ -54,45 +51,11 @@ impl Index for ObvhsCwBvh {
                 node.intersect_ray(&oray, state.oct_inv4)
             },
             {
-                let prim = ids[state.primitive_id as usize];
-                stats.prim_test();
-                if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                    best.offer(t, prim);
-                    oray.tmax = culling_bound(best.t());
-                }
-            }
-        );
-        best.get()
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        let oray = obvhs_ray(ray, culling_bound(ray.t_max));
-        let mut state = self.bvh.new_traversal(oray.direction);
-        let mut node: &CwBvhNode;
-        let ids = &self.bvh.primitive_indices;
-        let mut found = false;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            state,
-            {
-                stats.node_visit();
-                stats.box_tests(node.child_meta.iter().filter(|&&m| m != 0).count() as u32);
-                node.intersect_ray(&oray, state.oct_inv4)
-            },
-            {
-                stats.prim_test();
-                if geom
-                    .intersect(ids[state.primitive_id as usize], ray, ray.t_max)
-                    .is_some()
-                {
-                    found = true;
+                if !prim(ids[state.primitive_id as usize], stats, &mut oray) {
                     break;
                 }
             }
         );
-        found
     }
 
     fn info(&self) -> IndexInfo {

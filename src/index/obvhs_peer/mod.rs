@@ -19,9 +19,14 @@
 
 mod bvh2;
 mod cwbvh;
+mod tree;
 
-pub use bvh2::ObvhsBvh2;
-pub use cwbvh::ObvhsCwBvh;
+pub use tree::Obvhs;
+
+/// obvhs's binary BVH as an index (`obvhs-bvh2`).
+pub type ObvhsBvh2 = Obvhs<bvh2::Bvh2Peer>;
+/// obvhs's compressed wide BVH8 as an index (`obvhs-cwbvh`).
+pub type ObvhsCwBvh = Obvhs<cwbvh::CwBvhPeer>;
 
 use crate::geometry::Ray;
 use crate::index::BuildError;
