@@ -65,16 +65,12 @@ fn rays_in_general_planes(planes: &[(Vec3A, f32)], scene: &Scene, per_plane: usi
 
 #[test]
 fn agrees_with_other_parameters() {
-    let scene = generators::generate("stadium", 3000, 3).unwrap();
-    let rays = common::agreement_rays(&scene, 1500);
-    for spec in [
+    assert_agrees_with_parameters(&[
         "bsp:sweep=false,axis_candidates=1,plane_candidates=0",
         "bsp:sweep=false,plane_candidates=30,leaf_size=1",
         "bsp:max_depth=3",
         "bsp:mailbox=false",
-    ] {
-        common::assert_agrees(spec, &scene, &rays);
-    }
+    ]);
 }
 
 #[test]
@@ -101,12 +97,7 @@ fn rays_in_split_planes_and_through_their_crossings() {
         let b = scene.bounds();
         let mut rays = rays_in_axis_planes(&axis, &b, 4);
         rays.extend(rays_through_plane_crossings(&axis, &b, 300));
-        let sample: Vec<_> = general
-            .iter()
-            .step_by(general.len() / 80 + 1)
-            .copied()
-            .collect();
-        rays.extend(rays_in_general_planes(&sample, &scene, 8));
+        rays.extend(rays_in_general_planes(&spaced(&general, 80), &scene, 8));
         common::assert_agrees("bsp", &scene, &rays);
     }
 }

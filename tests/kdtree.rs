@@ -14,17 +14,13 @@ fn kdtree_on(scene: &Scene, params: &str) -> KdTree {
 
 #[test]
 fn agrees_with_other_parameters() {
-    let scene = generators::generate("stadium", 3000, 3).unwrap();
-    let rays = common::agreement_rays(&scene, 1500);
-    for spec in [
+    assert_agrees_with_parameters(&[
         "kdtree:leaf_size=8",
         "kdtree:max_depth=3",
         "kdtree:intersect_cost=2.0,empty_bonus=0.0",
         "kdtree:mailbox=false",
         "kdtree:mailbox=false,max_depth=6",
-    ] {
-        common::assert_agrees(spec, &scene, &rays);
-    }
+    ]);
 }
 
 #[test]
@@ -34,13 +30,8 @@ fn rays_in_split_planes_and_through_their_crossings() {
         let tree = kdtree_on(&scene, "");
         let planes = tree.split_planes();
         assert!(!planes.is_empty(), "{name}: the tree splits");
-        let sample: Vec<_> = planes
-            .iter()
-            .step_by(planes.len() / 60 + 1)
-            .copied()
-            .collect();
         let b = scene.bounds();
-        let mut rays = rays_in_axis_planes(&sample, &b, 8);
+        let mut rays = rays_in_axis_planes(&spaced(&planes, 60), &b, 8);
         rays.extend(rays_through_plane_crossings(&planes, &b, 600));
         common::assert_agrees("kdtree", &scene, &rays);
     }

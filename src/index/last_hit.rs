@@ -17,7 +17,8 @@
 //!   any-hit query stopped at, kept for the next ray.
 
 use super::{Index, Stats};
-use crate::geometry::{Aabb, Hit, Ray};
+use crate::geometry::triangle::lanes::TriangleBlock;
+use crate::geometry::{Aabb, Hit, Ray, Triangle};
 use crate::scene::Geometry;
 use glam::Vec3A;
 use std::sync::atomic::AtomicU32;
@@ -44,6 +45,17 @@ impl<G: Geometry> KernelRange<G> {
     }
 }
 
+impl<G> KernelRange<G> {
+    /// `ray` with the `t_max` the kernel is to see.
+    #[inline(always)]
+    fn kernel_ray(&self, ray: &Ray) -> Ray {
+        Ray {
+            t_max: self.kernel_t_max,
+            ..*ray
+        }
+    }
+}
+
 impl<G: Clone> Clone for KernelRange<G> {
     fn clone(&self) -> Self {
         KernelRange {
@@ -66,13 +78,27 @@ impl<G: Geometry> Geometry for KernelRange<G> {
     }
     #[inline(always)]
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
-        let mut full = *ray;
-        full.t_max = self.kernel_t_max;
-        let t = self.inner.intersect(prim, &full, t_max);
+        let t = self.inner.intersect(prim, &self.kernel_ray(ray), t_max);
         if t.is_some() {
             self.found.store(prim, Relaxed);
         }
         t
+    }
+    /// The inner geometry's lane form with the kernel's ray, so wide leaves keep their
+    /// one-pass test; notes the last hit lane, as the lane-by-lane default would.
+    #[inline(always)]
+    fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
+        let (mask, t) = self
+            .inner
+            .intersect_block(block, &self.kernel_ray(ray), t_max);
+        if mask != 0 {
+            let last = 31 - mask.leading_zeros();
+            self.found.store(block.ids[last as usize], Relaxed);
+        }
+        (mask, t)
+    }
+    fn block_triangle(&self, prim: u32) -> Option<Triangle> {
+        self.inner.block_triangle(prim)
     }
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
         self.inner.overlaps_box(prim, cell)

@@ -279,3 +279,22 @@ pub fn assert_partition_basics<I: Index>(index: &str, node_bytes: usize, own_bad
     assert_structure_figures::<I>(index, node_bytes);
     assert_bad_parameters(index, own_bad);
 }
+
+/// Each of `specs` (an index with non-default parameters) returns brute force's hits on a
+/// 3,000-triangle stadium (many coplanar, axis-aligned faces).
+pub fn assert_agrees_with_parameters(specs: &[&str]) {
+    let scene = generators::generate("stadium", 3000, 3).unwrap();
+    let rays = crate::common::agreement_rays(&scene, 1500);
+    for spec in specs {
+        crate::common::assert_agrees(spec, &scene, &rays);
+    }
+}
+
+/// Evenly spaced items of `items`, about `about` of them (every `len / about + 1`-th).
+pub fn spaced<T: Copy>(items: &[T], about: usize) -> Vec<T> {
+    items
+        .iter()
+        .step_by(items.len() / about + 1)
+        .copied()
+        .collect()
+}
