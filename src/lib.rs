@@ -1,5 +1,6 @@
 //! accelbench: a benchmark suite for ray-casting acceleration structures.
 //!
+//! - [`random`]: the protocol's seeded PRNG (SplitMix64), shared by every layer above.
 //! - [`geometry`]: rays, boxes, hits and the shared ray–primitive kernels.
 //! - [`scene`]: scenes (OBJ, generators), and the [`scene::Geometry`] interface indices use.
 //! - [`camera`] and [`rays`]: the pinhole camera, the protocol's ray sets and ray/hit files.
@@ -15,6 +16,7 @@ pub mod cli;
 pub mod geometry;
 pub mod harness;
 pub mod index;
+pub mod random;
 pub mod rays;
 pub mod render;
 pub mod report;

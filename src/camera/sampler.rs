@@ -7,7 +7,7 @@
 //! dimensions are not correlated, and jitters within strata come from SplitMix64 seeded by
 //! `(seed, group, sample)`: the same inputs give the same samples on any thread.
 
-use crate::rays::SplitMix64;
+use crate::random::SplitMix64;
 
 /// One sample's unit-square coordinates: film offset within the pixel, lens point, shutter
 /// time; each component in `[0, 1)`.

@@ -3,6 +3,7 @@
 pub mod peer_check;
 pub mod shard;
 pub mod suite;
+mod suite_config;
 mod suite_result;
 mod suite_set;
 pub mod sweep;

@@ -11,61 +11,15 @@
 //! - every timed pass with the same index's counting pass.
 
 pub use super::shard::Shard;
+use super::suite_config::Pools;
+pub use super::suite_config::SuiteConfig;
 pub use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
 use super::suite_set::{SetRun, run_set};
-use super::workload::{self, RaySet, SetSizes};
+use super::workload::{self, RaySet};
 use crate::geometry::TriangleKernelKind;
-use crate::index::{BuildError, IndexSpec, TraceIndex, TraceMode, build_index, is_peer};
+use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, is_peer};
 use crate::scene::{Scene, SceneGeometry};
 use indicatif::ProgressBar;
-use serde::Serialize;
-
-/// What to run.
-#[derive(Debug, Clone, Serialize)]
-pub struct SuiteConfig {
-    #[serde(serialize_with = "specs_as_strings")]
-    pub indices: Vec<IndexSpec>,
-    pub sets: Vec<RaySet>,
-    pub threads: Vec<usize>,
-    pub sizes: SetSizes,
-    /// Timed runs per (index, set, threads); the median is reported.
-    pub repeats: usize,
-    pub kernel: TriangleKernelKind,
-    /// Brute-force verification covers every ray while `rays x primitives` is at most this;
-    /// beyond it, a deterministic sample of that cost.
-    pub verify_budget: u64,
-    /// Brute force is timed as an index only while `rays x primitives` is at most this.
-    pub brute_timing_budget: u64,
-    /// `false` for `accelbench verify`: no timed passes, no rows.
-    pub timed: bool,
-    /// The share of the scene x index work this run does ([`Shard::WHOLE`] for all of it).
-    pub shard: Shard,
-    /// Modes each index is also traced in besides ray by ray (`run --last-hit`,
-    /// `--packets N`): verified against the ray-by-ray hits, with rows of their own.
-    pub modes: Vec<TraceMode>,
-}
-
-fn specs_as_strings<S: serde::Serializer>(v: &[IndexSpec], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_seq(v.iter().map(|x| x.to_string()))
-}
-
-/// A rayon pool per thread count, built once per run.
-pub(super) struct Pools(pub(super) Vec<(usize, rayon::ThreadPool)>);
-
-impl Pools {
-    fn new(threads: &[usize]) -> Result<Pools, rayon::ThreadPoolBuildError> {
-        let mut v = Vec::new();
-        for &t in threads {
-            v.push((t, rayon::ThreadPoolBuilder::new().num_threads(t).build()?));
-        }
-        Ok(Pools(v))
-    }
-
-    /// The pool of the largest thread count (counting passes, references, pictures).
-    pub(super) fn all(&self) -> &rayon::ThreadPool {
-        &self.0.last().expect("at least one thread count").1
-    }
-}
 
 /// Builds the index a spec names over a scene's primitives.
 pub type IndexBuilder<'a> =
@@ -124,14 +78,6 @@ pub fn run_suite_with(
     Ok(res)
 }
 
-pub(super) fn note(res: &mut SuiteResult, scene: &Scene, what: String, reason: String) {
-    res.notes.push(Note {
-        scene: scene.name.clone(),
-        what,
-        reason,
-    });
-}
-
 /// Runs `specs` (this shard's share of the indices) on every ray set of `scene`.
 fn run_scene(
     scene: &Scene,
@@ -149,21 +95,11 @@ fn run_scene(
         match build(spec, &geom) {
             Ok(i) => built.push(i),
             Err(BuildError::Unsupported { reason, .. }) => {
-                note(
-                    res,
-                    scene,
-                    format!("index {spec}"),
-                    format!("skipped: {reason}"),
-                );
+                res.note(scene, format!("index {spec}"), format!("skipped: {reason}"));
                 progress.inc(cfg.sets.len() as u64);
             }
             Err(e) => {
-                note(
-                    res,
-                    scene,
-                    format!("index {spec}"),
-                    format!("build failed: {e}"),
-                );
+                res.note(scene, format!("index {spec}"), format!("build failed: {e}"));
                 progress.inc(cfg.sets.len() as u64);
             }
         }
@@ -176,7 +112,7 @@ fn run_scene(
     let primary = match workload::primary(scene, &cfg.sizes) {
         Ok(r) => r,
         Err(e) => {
-            note(res, scene, "all ray sets".into(), format!("camera: {e}"));
+            res.note(scene, "all ray sets".into(), format!("camera: {e}"));
             return built;
         }
     };
@@ -206,15 +142,14 @@ fn run_scene(
                 Ok(r) => r,
                 Err(e) => {
                     let what = format!("ray set {}", s.name());
-                    note(res, scene, what, format!("camera: {e}"));
+                    res.note(scene, what, format!("camera: {e}"));
                     progress.inc(built.len() as u64);
                     continue;
                 }
             },
         };
         if rays.is_empty() {
-            note(
-                res,
+            res.note(
                 scene,
                 format!("ray set {}", set.name()),
                 "skipped: no primary hit to start from (or no light the hit surfaces face)".into(),

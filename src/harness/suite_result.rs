@@ -3,6 +3,7 @@
 
 use super::verify::Mismatch;
 use super::workload::RaySet;
+use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 
 /// One row of `results.csv`: scene x index x ray set x threads.
@@ -80,4 +81,16 @@ pub struct SuiteResult {
     pub notes: Vec<Note>,
     /// Per scene and set: how brute-force verification covered the rays.
     pub verification: Vec<Note>,
+}
+
+impl SuiteResult {
+    /// Notes something about `scene` that is not a result row (an index not built, a ray set
+    /// skipped) and why.
+    pub(super) fn note(&mut self, scene: &Scene, what: String, reason: String) {
+        self.notes.push(Note {
+            scene: scene.name.clone(),
+            what,
+            reason,
+        });
+    }
 }

@@ -2,7 +2,7 @@
 //! a counting pass, the verification of its hits, the timed passes and the result rows.
 
 use super::peer_check::{PeerCounts, classify};
-use super::suite::{Pools, SuiteConfig, note};
+use super::suite_config::{Pools, SuiteConfig};
 use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
 use super::timing::{BatchHits, Query, Timing, counting_pass, counting_pass_in, timed_pass_in};
 use super::verify::{Mismatch, compare_closest};
@@ -152,8 +152,7 @@ fn brute_over_budget(
     if index.name() != "brute" || run.rays.len() as u64 * prims <= cfg.brute_timing_budget {
         return false;
     }
-    note(
-        res,
+    res.note(
         run.scene,
         format!("brute on {}", run.set.name()),
         format!(

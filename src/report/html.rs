@@ -8,23 +8,15 @@
 //! `data-ratio` (the index's Mrays/s over the fastest's, full precision; the text shows two
 //! decimals), so tools can read it back.
 
+use super::ReportError;
 use super::cost_fit::CostFit;
-use super::html_sections::{build_tables, cost_tables, pictures_html};
+use super::html_sections::{build_tables, cost_tables, esc, pictures_html, uniq_labels};
 use super::run_meta::RunMeta;
 use super::run_notes::RunNotes;
-use super::verdict::{Verdict, index_label};
-use super::{ReportError, suite_plots::uniq};
+use super::verdict::Verdict;
 use crate::harness::suite::ResultRow;
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// Escapes text for HTML content and attribute values.
-pub(super) fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
 
 /// The background of a verdict cell: green for the fastest, through yellow to red at a tenth of
 /// its speed or less (log scale).
@@ -158,15 +150,6 @@ fn verdict_matrix(rows: &[ResultRow], verdicts: &[Verdict]) -> String {
     }
     s.push_str("</tbody></table>\n");
     s
-}
-
-/// Index labels in first-seen order.
-pub(super) fn uniq_labels(rows: &[ResultRow]) -> Vec<String> {
-    let labels: Vec<String> = rows.iter().map(|r| index_label(r, rows)).collect();
-    uniq(labels.iter().map(String::as_str))
-        .into_iter()
-        .map(str::to_owned)
-        .collect()
 }
 
 /// Each chart inlined (the SVG files' content, scaled to the page's width).

@@ -1,14 +1,31 @@
-//! The HTML report's explaining sections: the cost breakdown (fitted time per step and per test,
-//! steps and tests per ray), build time and memory, and the pictures.
+//! The HTML report's explaining sections (the cost breakdown: fitted time per step and per
+//! test, steps and tests per ray; build time and memory; the pictures) and the text helpers the
+//! whole page shares (escaping, index labels).
 
 use super::cost_fit::CostFit;
 use super::fixed as num;
-use super::html::{esc, uniq_labels};
 use super::run_notes::RunNotes;
 use super::suite_plots::{scenes, uniq};
 use super::verdict::index_label;
 use crate::harness::suite::ResultRow;
 use std::fmt::Write as _;
+
+/// Escapes text for HTML content and attribute values.
+pub(super) fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Index labels in first-seen order.
+pub(super) fn uniq_labels(rows: &[ResultRow]) -> Vec<String> {
+    let labels: Vec<String> = rows.iter().map(|r| index_label(r, rows)).collect();
+    uniq(labels.iter().map(String::as_str))
+        .into_iter()
+        .map(str::to_owned)
+        .collect()
+}
 
 fn header(first: &[&str], labels: &[String]) -> String {
     let mut s = "<thead><tr>".to_owned();

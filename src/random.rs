@@ -1,4 +1,5 @@
-//! SplitMix64, the protocol's PRNG (Steele, Lea and Flood 2014).
+//! SplitMix64, the protocol's PRNG (Steele, Lea and Flood 2014): the bottom layer, shared by
+//! the scene generators, the camera models' samplers and the ray sets (it imports nothing).
 
 /// SplitMix64 state. The first output is the one after the first increment.
 #[derive(Debug, Clone)]
