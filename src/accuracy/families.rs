@@ -71,6 +71,14 @@ impl Family {
     }
 }
 
+/// The study's translations from the origin: `0, 1e0 .. 1e7`.
+pub fn full_offsets() -> Vec<f64> {
+    [0.0]
+        .into_iter()
+        .chain((0..=7).map(|e| 10f64.powi(e)))
+        .collect()
+}
+
 /// The object size at a translation (see the module doc).
 pub fn object_size(offset: f64) -> f64 {
     (offset * 1e-4).max(1.0)
@@ -137,6 +145,34 @@ pub(super) fn aimed(o: Vec3A, target: Vec3A) -> Option<Ray> {
     Ray::infinite(Vec3::from(o), d.as_vec3()).ok()
 }
 
+/// `-1` or `1`, even odds.
+pub(super) fn sign(rng: &mut SplitMix64) -> f64 {
+    if rng.next_unit() < 0.5 { -1.0 } else { 1.0 }
+}
+
+/// A grazing ray through `q`: at an angle log-uniform in `[1e-6, 1e-1]` rad to the plane with
+/// unit normal `normal`, from either side, starting `2 size` before `q`.
+pub(super) fn grazing(rng: &mut SplitMix64, q: DVec3, normal: DVec3, size: f64) -> Option<Ray> {
+    let tangent = normal.cross(unit(rng)).normalize_or_zero();
+    let angle = log_uniform(rng, 1e-6, 1e-1);
+    let d = tangent * angle.cos() + normal * (sign(rng) * angle.sin());
+    let o = q - d * (2.0 * size);
+    Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
+}
+
+/// Up to `n` rays from `attempt` (which fails on a degenerate ray), giving up after `4n + 16`
+/// attempts.
+pub(super) fn collect_rays(n: usize, mut attempt: impl FnMut() -> Option<Ray>) -> Vec<Ray> {
+    let mut rays = Vec::with_capacity(n);
+    for _ in 0..4 * n + 16 {
+        if rays.len() >= n {
+            break;
+        }
+        rays.extend(attempt());
+    }
+    rays
+}
+
 /// Rays of `family` for the triangle mesh `tris` (placed at `offset`); `Inside` gives none.
 pub fn triangle_rays(
     family: Family,
@@ -147,56 +183,44 @@ pub fn triangle_rays(
 ) -> Vec<Ray> {
     let mut rng = SplitMix64::new(seed);
     let outside = |rng: &mut SplitMix64| place(unit(rng) * 3.0, offset);
-    let mut rays = Vec::with_capacity(n);
     if family == Family::Inside {
-        return rays;
+        return Vec::new();
     }
-    let mut i = 0usize;
-    while rays.len() < n && i < 4 * n + 16 {
-        i += 1;
-        let ray = match family {
-            Family::Random => {
-                let o = outside(&mut rng);
-                aimed(o, place(in_cube(&mut rng) * 1.2, offset))
-            }
-            Family::EdgesOutside | Family::EdgesInside => {
-                let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
-                let k = (rng.next_u64() % 6) as usize;
-                // Vertices, or edge midpoints computed in f32 as a renderer would.
-                let target = if k < 3 {
-                    t.v[k]
-                } else {
-                    (t.v[k - 3] + t.v[(k - 2) % 3]) * 0.5
-                };
-                let o = if family == Family::EdgesOutside {
-                    outside(&mut rng)
-                } else {
-                    place(in_cube(&mut rng) * 0.1, offset)
-                };
-                aimed(o, target)
-            }
-            Family::Grazing | Family::Inside => {
-                let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
-                let v = t.v.map(f64v);
-                let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
-                let (b1, b2) = (rng.next_unit(), rng.next_unit());
-                let (b1, b2) = if b1 + b2 > 1.0 {
-                    (1.0 - b1, 1.0 - b2)
-                } else {
-                    (b1, b2)
-                };
-                let q = v[0] + (v[1] - v[0]) * b1 + (v[2] - v[0]) * b2;
-                let tangent = n.cross(unit(&mut rng)).normalize_or_zero();
-                let angle = log_uniform(&mut rng, 1e-6, 1e-1);
-                let sign = if rng.next_unit() < 0.5 { -1.0 } else { 1.0 };
-                let d = tangent * angle.cos() + n * (sign * angle.sin());
-                let o = q - d * (2.0 * object_size(offset));
-                Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
-            }
-        };
-        rays.extend(ray);
-    }
-    rays
+    collect_rays(n, || match family {
+        Family::Random => {
+            let o = outside(&mut rng);
+            aimed(o, place(in_cube(&mut rng) * 1.2, offset))
+        }
+        Family::EdgesOutside | Family::EdgesInside => {
+            let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+            let k = (rng.next_u64() % 6) as usize;
+            // Vertices, or edge midpoints computed in f32 as a renderer would.
+            let target = if k < 3 {
+                t.v[k]
+            } else {
+                (t.v[k - 3] + t.v[(k - 2) % 3]) * 0.5
+            };
+            let o = if family == Family::EdgesOutside {
+                outside(&mut rng)
+            } else {
+                place(in_cube(&mut rng) * 0.1, offset)
+            };
+            aimed(o, target)
+        }
+        Family::Grazing | Family::Inside => {
+            let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+            let v = t.v.map(f64v);
+            let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+            let (b1, b2) = (rng.next_unit(), rng.next_unit());
+            let (b1, b2) = if b1 + b2 > 1.0 {
+                (1.0 - b1, 1.0 - b2)
+            } else {
+                (b1, b2)
+            };
+            let q = v[0] + (v[1] - v[0]) * b1 + (v[2] - v[0]) * b2;
+            grazing(&mut rng, q, n, object_size(offset))
+        }
+    })
 }
 
 /// Rays of `family` for the spheres (placed at `offset`); the edge families and `Inside` give
@@ -209,33 +233,25 @@ pub fn sphere_rays(
     seed: u64,
 ) -> Vec<Ray> {
     let mut rng = SplitMix64::new(seed);
-    let mut rays = Vec::with_capacity(n);
     if family.is_edges() || family == Family::Inside {
-        return rays;
+        return Vec::new();
     }
-    for _ in 0..4 * n + 16 {
-        if rays.len() >= n {
-            break;
+    collect_rays(n, || match family {
+        Family::Random => {
+            let o = place(unit(&mut rng) * 3.0, offset);
+            aimed(o, place(in_cube(&mut rng) * 1.2, offset))
         }
-        let ray = match family {
-            Family::Random => {
-                let o = place(unit(&mut rng) * 3.0, offset);
-                aimed(o, place(in_cube(&mut rng) * 1.2, offset))
-            }
-            _ => {
-                let s = &spheres[(rng.next_u64() % spheres.len() as u64) as usize];
-                let c = f64v(s.center);
-                let r = s.radius as f64;
-                let d = unit(&mut rng);
-                let side = d.cross(unit(&mut rng)).normalize_or_zero();
-                let b = r * (1.0 - log_uniform(&mut rng, 1e-7, 1e-1));
-                let o = c + side * b - d * (3.0 * r);
-                Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
-            }
-        };
-        rays.extend(ray);
-    }
-    rays
+        _ => {
+            let s = &spheres[(rng.next_u64() % spheres.len() as u64) as usize];
+            let c = f64v(s.center);
+            let r = s.radius as f64;
+            let d = unit(&mut rng);
+            let side = d.cross(unit(&mut rng)).normalize_or_zero();
+            let b = r * (1.0 - log_uniform(&mut rng, 1e-7, 1e-1));
+            let o = c + side * b - d * (3.0 * r);
+            Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
+        }
+    })
 }
 
 #[cfg(test)]

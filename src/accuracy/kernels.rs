@@ -2,12 +2,15 @@
 //! shape kernels in `f32` (their `f64` mirrors are the reference), the primitives they are shot
 //! at, the closest hit of one kernel over a scene, and the single-thread timing loop.
 
-use super::kernels_f64::{self as k64, Ray64};
+use super::kernels_f64::Ray64;
 use super::reference::{self, Reference};
 use super::shapes_f64;
+use crate::geometry::real::{KernelRay, Real};
 use crate::geometry::shapes::{cone, cylinder, ellipsoid, obb, polygon};
 use crate::geometry::sphere::{intersect_algebraic, intersect_geometric};
-use crate::geometry::triangle::{Exact, MollerTrumbore, Parametric, PlaneEdges, Watertight};
+use crate::geometry::triangle::{
+    Exact, MollerTrumbore, Parametric, PlaneEdges, RealKernel, Watertight,
+};
 use crate::geometry::{Ray, Shape, Sphere, Triangle, TriangleKernel};
 use serde::Serialize;
 use std::hint::black_box;
@@ -230,10 +233,10 @@ fn tri_f32(k: Kernel) -> TriF32 {
 
 fn tri_f64(k: Kernel) -> TriF64 {
     match k {
-        Kernel::PlaneEdges => k64::plane_edges,
-        Kernel::Parametric => k64::parametric,
-        Kernel::MollerTrumbore => k64::moller_trumbore,
-        _ => k64::watertight,
+        Kernel::PlaneEdges => PlaneEdges::intersect_in,
+        Kernel::Parametric => Parametric::intersect_in,
+        Kernel::MollerTrumbore => MollerTrumbore::intersect_in,
+        _ => Watertight::intersect_in,
     }
 }
 
@@ -246,8 +249,8 @@ fn sphere_f32(k: Kernel) -> SphF32 {
 
 fn sphere_f64(k: Kernel) -> SphF64 {
     match k {
-        Kernel::SphereGeometric => k64::sphere_geometric,
-        _ => k64::sphere_algebraic,
+        Kernel::SphereGeometric => intersect_geometric,
+        _ => intersect_algebraic,
     }
 }
 
@@ -312,6 +315,27 @@ pub fn time_variant(
     best
 }
 
+/// [`one_pass`] for a triangle kernel other than `Exact`, in the precision of `rays` (each call
+/// inlined: no function pointer in the timed loop).
+fn triangle_hits<R: KernelRay>(kernel: Kernel, tris: &[Triangle], rays: &[R]) -> usize {
+    let far = R::Scalar::INFINITY;
+    count_hits(tris, rays, |p, r| match kernel {
+        Kernel::PlaneEdges => PlaneEdges::intersect_in(p, r, far).is_some(),
+        Kernel::Parametric => Parametric::intersect_in(p, r, far).is_some(),
+        Kernel::MollerTrumbore => MollerTrumbore::intersect_in(p, r, far).is_some(),
+        _ => Watertight::intersect_in(p, r, far).is_some(),
+    })
+}
+
+/// [`one_pass`] for a sphere kernel in the precision of `rays`.
+fn sphere_hits<R: KernelRay>(kernel: Kernel, spheres: &[Sphere], rays: &[R]) -> usize {
+    let far = R::Scalar::INFINITY;
+    count_hits(spheres, rays, |p, r| match kernel {
+        Kernel::SphereGeometric => intersect_geometric(p, r, far).is_some(),
+        _ => intersect_algebraic(p, r, far).is_some(),
+    })
+}
+
 /// Every ray against every primitive once; the number of hits.
 fn one_pass(
     kernel: Kernel,
@@ -321,27 +345,15 @@ fn one_pass(
     r64: &[Ray64],
 ) -> usize {
     match (prims, precision) {
-        (Prims::Tris(t), Precision::F32) => count_hits(t, rays, |p, r| match kernel {
-            Kernel::PlaneEdges => PlaneEdges::intersect(p, r, f32::INFINITY).is_some(),
-            Kernel::Parametric => Parametric::intersect(p, r, f32::INFINITY).is_some(),
-            Kernel::MollerTrumbore => MollerTrumbore::intersect(p, r, f32::INFINITY).is_some(),
-            Kernel::Exact => Exact::intersect(p, r, f32::INFINITY).is_some(),
-            _ => Watertight::intersect(p, r, f32::INFINITY).is_some(),
-        }),
-        (Prims::Tris(t), Precision::F64) => count_hits(t, r64, |p, r| match kernel {
-            Kernel::PlaneEdges => k64::plane_edges(p, r, f64::INFINITY).is_some(),
-            Kernel::Parametric => k64::parametric(p, r, f64::INFINITY).is_some(),
-            Kernel::MollerTrumbore => k64::moller_trumbore(p, r, f64::INFINITY).is_some(),
-            _ => k64::watertight(p, r, f64::INFINITY).is_some(),
-        }),
-        (Prims::Spheres(s), Precision::F32) => count_hits(s, rays, |p, r| match kernel {
-            Kernel::SphereGeometric => intersect_geometric(p, r, f32::INFINITY).is_some(),
-            _ => intersect_algebraic(p, r, f32::INFINITY).is_some(),
-        }),
-        (Prims::Spheres(s), Precision::F64) => count_hits(s, r64, |p, r| match kernel {
-            Kernel::SphereGeometric => k64::sphere_geometric(p, r, f64::INFINITY).is_some(),
-            _ => k64::sphere_algebraic(p, r, f64::INFINITY).is_some(),
-        }),
+        (Prims::Tris(t), Precision::F32) if kernel == Kernel::Exact => {
+            count_hits(t, rays, |p, r| {
+                Exact::intersect(p, r, f32::INFINITY).is_some()
+            })
+        }
+        (Prims::Tris(t), Precision::F32) => triangle_hits(kernel, t, rays),
+        (Prims::Tris(t), Precision::F64) => triangle_hits(kernel, t, r64),
+        (Prims::Spheres(s), Precision::F32) => sphere_hits(kernel, s, rays),
+        (Prims::Spheres(s), Precision::F64) => sphere_hits(kernel, s, r64),
         (Prims::Shapes { shapes, .. }, Precision::F32) => time_shapes(kernel, shapes, rays),
         (Prims::Shapes { shapes, .. }, Precision::F64) => count_hits(shapes, r64, |p, r| {
             let mut doubt = shapes_f64::Doubt::default();

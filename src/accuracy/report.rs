@@ -2,6 +2,7 @@
 //! scatter plot with its Pareto front, the leak-rate-against-offset plot and `accuracy.md`.
 
 use super::families::Family;
+use super::metrics::rate;
 use super::study::{AccuracyRow, Kernel, Precision};
 use super::watertight::LeakRow;
 use crate::report::{Chart, ReportError, Series, line_chart, scatter_chart_with_lines, write_csv};
@@ -137,14 +138,20 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
             )
         })
         .collect();
+    let chart = time_vs_error_axes("Ray-primitive kernels: time against error");
+    scatter_chart_with_lines(path, &chart, &series, &fronts)
+}
+
+/// A log-log chart of ns per test (x) against the mean relative `t` error (y).
+fn time_vs_error_axes(title: &str) -> Chart {
     let mut chart = Chart::new(
-        "Ray-primitive kernels: time against error",
+        title,
         "ns per primitive test (single thread, best of repeats)",
         "mean relative t error (0 drawn at 1e-18)",
     );
     chart.log_x = true;
     chart.log_y = true;
-    scatter_chart_with_lines(path, &chart, &series, &fronts)
+    chart
 }
 
 /// Log-log scatter of the shape kernels (`f32` against their `f64` mirrors): one series per
@@ -152,13 +159,7 @@ pub fn time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), Repo
 pub fn shape_time_vs_error_chart(path: &Path, rows: &[AccuracyRow]) -> Result<(), ReportError> {
     let pts = trade_offs(rows, true);
     let series = family_series(&pts, &Family::ALL, false);
-    let mut chart = Chart::new(
-        "Shape kernels (f32 against an f64 mirror): time against error",
-        "ns per primitive test (single thread, best of repeats)",
-        "mean relative t error (0 drawn at 1e-18)",
-    );
-    chart.log_x = true;
-    chart.log_y = true;
+    let chart = time_vs_error_axes("Shape kernels (f32 against an f64 mirror): time against error");
     scatter_chart_with_lines(path, &chart, &series, &[])
 }
 
@@ -211,30 +212,11 @@ pub fn markdown(rows: &[AccuracyRow], leaks: &[LeakRow]) -> String {
             if mine.is_empty() {
                 continue;
             }
-            let sum = |f: fn(&AccuracyRow) -> usize| mine.iter().map(|r| f(r)).sum::<usize>();
-            let hits = sum(|r| r.reference_hits);
-            let misses = sum(|r| r.rays - r.unverifiable - r.reference_hits);
-            let ratio = |n: usize, of: usize| if of == 0 { 0.0 } else { n as f64 / of as f64 };
-            let max_err = mine.iter().map(|r| r.max_rel_t_error).fold(0.0, f64::max);
-            let mean_err = mine.iter().map(|r| r.mean_rel_t_error).sum::<f64>() / mine.len() as f64;
             let ns = mine
                 .iter()
                 .find(|r| r.family == Family::Random)
                 .map_or(f64::NAN, |r| r.ns_per_test);
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.2} |",
-                k.name(),
-                p.name(),
-                sum(|r| r.rays),
-                sum(|r| r.unverifiable),
-                ratio(sum(|r| r.false_misses), hits),
-                ratio(sum(|r| r.false_hits), misses),
-                ratio(sum(|r| r.wrong_primitives), hits),
-                max_err,
-                mean_err,
-                ns
-            );
+            pooled_line(&mut s, [k.name(), p.name()], &mine, true, ns);
         }
     }
     fallback_table(&mut s, rows);
@@ -307,24 +289,29 @@ fn shape_table(s: &mut String, rows: &[AccuracyRow]) {
             let Some(first) = mine.first() else {
                 continue;
             };
-            let sum = |g: fn(&AccuracyRow) -> usize| mine.iter().map(|r| g(r)).sum::<usize>();
-            let hits = sum(|r| r.reference_hits);
-            let misses = sum(|r| r.rays - r.unverifiable - r.reference_hits);
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.2} |",
-                k.name(),
-                f.name(),
-                sum(|r| r.rays),
-                sum(|r| r.unverifiable),
-                super::metrics::rate(sum(|r| r.false_misses), hits),
-                super::metrics::rate(sum(|r| r.false_hits), misses),
-                mine.iter().map(|r| r.max_rel_t_error).fold(0.0, f64::max),
-                mine.iter().map(|r| r.mean_rel_t_error).sum::<f64>() / mine.len() as f64,
-                first.ns_per_test
-            );
+            pooled_line(s, [k.name(), f.name()], &mine, false, first.ns_per_test);
         }
     }
+}
+
+/// Appends the table line `| a | b | rays | unverifiable | false-miss rate | false-hit rate |
+/// [wrong-primitive rate |] max rel t error | mean rel t error | ns |` for `rows` pooled: counts
+/// summed, rates over the pooled reference hits (misses for false hits), the largest and the
+/// mean of the rows' `t` errors.
+fn pooled_line(s: &mut String, [a, b]: [&str; 2], rows: &[&AccuracyRow], wrong: bool, ns: f64) {
+    let sum = |f: fn(&AccuracyRow) -> usize| rows.iter().map(|r| f(r)).sum::<usize>();
+    let hits = sum(|r| r.reference_hits);
+    let misses = sum(|r| r.rays - r.unverifiable - r.reference_hits);
+    let (rays, unverifiable) = (sum(|r| r.rays), sum(|r| r.unverifiable));
+    let _ = write!(s, "| {a} | {b} | {rays} | {unverifiable} | ");
+    let _ = write!(s, "{:.3e} | ", rate(sum(|r| r.false_misses), hits));
+    let _ = write!(s, "{:.3e} | ", rate(sum(|r| r.false_hits), misses));
+    if wrong {
+        let _ = write!(s, "{:.3e} | ", rate(sum(|r| r.wrong_primitives), hits));
+    }
+    let max_err = rows.iter().map(|r| r.max_rel_t_error).fold(0.0, f64::max);
+    let mean_err = rows.iter().map(|r| r.mean_rel_t_error).sum::<f64>() / rows.len() as f64;
+    let _ = writeln!(s, "{max_err:.3e} | {mean_err:.3e} | {ns:.2} |");
 }
 
 #[cfg(test)]

@@ -6,7 +6,9 @@
 //! as a scene file would be. Ray targets and origins are derived from the shape's stored `f32`
 //! data (the shape the kernels see), in `f64`, then rounded to `f32`.
 
-use super::families::{Family, aimed, f64v, in_cube, log_uniform, object_size, to_f32, unit};
+use super::families::{
+    Family, aimed, collect_rays, f64v, grazing, in_cube, object_size, sign, to_f32, unit,
+};
 use super::kernels::Kernel;
 use super::shapes_f64::dmat;
 use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
@@ -94,10 +96,6 @@ fn radial(axis: DVec3, rng: &mut SplitMix64) -> DVec3 {
 
 fn pick(rng: &mut SplitMix64, n: usize) -> usize {
     (rng.next_u64() % n as u64) as usize
-}
-
-fn sign(rng: &mut SplitMix64) -> f64 {
-    if rng.next_unit() < 0.5 { -1.0 } else { 1.0 }
 }
 
 /// A random point of the surface and the outward normal there (the polygon's plane normal).
@@ -235,7 +233,6 @@ pub fn shape_rays(family: Family, shape: &Shape, offset: f64, n: usize, seed: u6
     let centre = f64v(bounds.center());
     let half = f64v(bounds.extent()) * 0.5;
     let ball = inner_ball(shape);
-    let mut rays = Vec::with_capacity(n);
     let edges = !matches!(shape, Shape::Ellipsoid(_));
     let applies = match family {
         Family::EdgesOutside => edges,
@@ -244,18 +241,15 @@ pub fn shape_rays(family: Family, shape: &Shape, offset: f64, n: usize, seed: u6
         Family::Random | Family::Grazing => true,
     };
     if !applies {
-        return rays;
+        return Vec::new();
     }
     let inside = |rng: &mut SplitMix64| {
         let (c, radius) = ball.unwrap_or((centre, 0.0));
         to_f32(c + in_cube(rng) * (radius / 3f64.sqrt()))
     };
-    for _ in 0..4 * n + 16 {
-        if rays.len() >= n {
-            break;
-        }
+    collect_rays(n, || {
         let outside = to_f32(centre + unit(&mut rng) * (3.0 * r));
-        let ray = match family {
+        match family {
             Family::Random => aimed(outside, to_f32(centre + in_cube(&mut rng) * half * 1.2)),
             Family::EdgesOutside => {
                 edge_point(shape, &mut rng).and_then(|t| aimed(outside, to_f32(t)))
@@ -270,16 +264,10 @@ pub fn shape_rays(family: Family, shape: &Shape, offset: f64, n: usize, seed: u6
             }
             Family::Grazing => {
                 let (q, normal) = surface_point(shape, &mut rng);
-                let tangent = normal.cross(unit(&mut rng)).normalize_or_zero();
-                let angle = log_uniform(&mut rng, 1e-6, 1e-1);
-                let d = tangent * angle.cos() + normal * (sign(&mut rng) * angle.sin());
-                let o = q - d * (2.0 * r);
-                Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
+                grazing(&mut rng, q, normal, r)
             }
-        };
-        rays.extend(ray);
-    }
-    rays
+        }
+    })
 }
 
 #[cfg(test)]
@@ -288,10 +276,8 @@ mod tests {
 
     #[test]
     fn every_shape_is_valid_and_gets_its_families_at_every_offset() {
-        let mut offsets = vec![0.0];
-        offsets.extend((0..=7).map(|e| 10f64.powi(e)));
         for k in Kernel::SHAPES {
-            for &offset in &offsets {
+            for offset in super::super::families::full_offsets() {
                 let shape = shape_at(k, offset).unwrap_or_else(|e| panic!("{k:?} {offset}: {e}"));
                 let fams = families(k);
                 for f in Family::ALL {

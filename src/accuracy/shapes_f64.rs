@@ -15,7 +15,7 @@
 
 use super::kernels_f64::Ray64;
 use super::reference::Reference;
-use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
+use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon, obb};
 use crate::geometry::{Ray, Shape};
 use glam::{DMat3, DVec3, Vec3A};
 
@@ -131,30 +131,12 @@ pub fn box_slabs(b: &Obb, ray: &Ray64, t_max: f64, doubt: &mut Doubt) -> Option<
     let t_hi = (h - o) * inv;
     let (mut enter, mut exit) = (f64::NEG_INFINITY, f64::INFINITY);
     let (mut ie, mut ix) = (None, None);
+    // A NaN (origin on a face plane, zero direction on that axis) puts no constraint: it
+    // stands for `none` in the min or max that takes it.
+    let or_none = |t: f64, none: f64| if t.is_nan() { none } else { t };
     for i in 0..3 {
-        // A NaN (origin on a face plane, zero direction on that axis) puts no constraint.
-        let lo = if t_lo[i].is_nan() {
-            f64::NEG_INFINITY
-        } else {
-            t_lo[i]
-        };
-        let hi = if t_hi[i].is_nan() {
-            f64::NEG_INFINITY
-        } else {
-            t_hi[i]
-        };
-        let near = lo.min(hi);
-        let lo = if t_lo[i].is_nan() {
-            f64::INFINITY
-        } else {
-            t_lo[i]
-        };
-        let hi = if t_hi[i].is_nan() {
-            f64::INFINITY
-        } else {
-            t_hi[i]
-        };
-        let far = lo.max(hi);
+        let near = or_none(t_lo[i], f64::NEG_INFINITY).min(or_none(t_hi[i], f64::NEG_INFINITY));
+        let far = or_none(t_lo[i], f64::INFINITY).max(or_none(t_hi[i], f64::INFINITY));
         if near > enter {
             (enter, ie) = (near, Some(i));
         }
@@ -183,11 +165,9 @@ pub fn box_front_planes(b: &Obb, ray: &Ray64, t_max: f64, doubt: &mut Doubt) -> 
     for back in [false, true] {
         let mut cand = [Cand::NONE; 3];
         for (i, c) in cand.iter_mut().enumerate() {
-            if d[i] == 0.0 {
+            let Some(t) = obb::face_plane_t(h[i], o[i], d[i], back) else {
                 continue;
-            }
-            let plus_face = (d[i] < 0.0) != back;
-            let t = ((if plus_face { h[i] } else { -h[i] }) - o[i]) / d[i];
+            };
             let t_err = plane_t_err(h, o, v_len, t, ray, d[i]);
             let (j, k) = ((i + 1) % 3, (i + 2) % 3);
             // Margin of |o_m + t d_m| <= h_m, and a bound on its error.
@@ -257,11 +237,9 @@ pub fn concave_polygon(p: &Polygon, ray: &Ray64, t_max: f64, doubt: &mut Doubt) 
     // Projected (x, y) of a vertex and a bound on the error of each coordinate.
     let project = |v: Vec3A| {
         let q = v64(v) - ray.origin;
-        let xy = (
-            q[ray.kx] - ray.sx * q[ray.kz],
-            q[ray.ky] - ray.sy * q[ray.kz],
-        );
-        let err = TOL * (q.abs().element_sum() * (1.0 + ray.sx.abs() + ray.sy.abs()));
+        let s = &ray.shear;
+        let xy = (q[s.kx] - s.sx * q[s.kz], q[s.ky] - s.sy * q[s.kz]);
+        let err = TOL * (q.abs().element_sum() * (1.0 + s.sx.abs() + s.sy.abs()));
         (xy, err)
     };
     let verts = p.vertices();

@@ -3,6 +3,7 @@
 use super::*;
 use crate::accuracy::kernels::Kernel;
 use crate::geometry::shapes::obb;
+use crate::geometry::test_support::ray;
 use glam::{Mat3A, Vec3};
 
 /// [`super::reference`] for the kernel `k`.
@@ -13,10 +14,6 @@ fn reference(k: Kernel, s: &Shape, r: &Ray) -> Reference {
 /// [`super::mirror`] for the kernel `k`.
 fn mirror(k: Kernel, s: &Shape, r: &Ray64, t_max: f64, d: &mut Doubt) -> Option<f64> {
     super::mirror(k == Kernel::BoxFrontPlanes, s, r, t_max, d)
-}
-
-fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-    Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap()
 }
 
 fn shapes() -> Vec<(Kernel, Shape)> {

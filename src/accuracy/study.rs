@@ -3,7 +3,9 @@
 //! reference (exact for triangles and spheres, the `f64` mirror for shapes: false misses, false
 //! hits, wrong primitives, relative `t` error) and timed (ns per primitive test).
 
-use super::families::{Family, icosphere_at, object_size, sphere_rays, spheres_at, triangle_rays};
+use super::families::{
+    Family, full_offsets, icosphere_at, object_size, sphere_rays, spheres_at, triangle_rays,
+};
 use super::kernels::{Prims, kernel_closest, time_variant, variants};
 use super::kernels_f64::Ray64;
 use super::metrics::{Tally, rate, reference_closest};
@@ -32,11 +34,9 @@ pub struct AccuracyConfig {
 impl AccuracyConfig {
     /// The command line's default: offsets `0, 1e0 .. 1e7`.
     pub fn full(rays: usize) -> AccuracyConfig {
-        let mut offsets = vec![0.0];
-        offsets.extend((0..=7).map(|e| 10f64.powi(e)));
         AccuracyConfig {
             rays,
-            offsets,
+            offsets: full_offsets(),
             icosphere_level: 2,
             timing_repeats: 3,
             seed: 7,

@@ -3,7 +3,7 @@
 //! brute force's any-hit query) and, for the watertight kernel, by the closest-hit query of every
 //! other registered index.
 
-use super::families::{icosphere_at, object_size};
+use super::families::{full_offsets, icosphere_at, object_size};
 use crate::geometry::{Ray, Triangle, TriangleKernelKind};
 use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, index_names};
 use crate::rays::SplitMix64;
@@ -28,11 +28,9 @@ pub struct WatertightConfig {
 impl WatertightConfig {
     /// Offsets `0, 1e0 .. 1e7`, every kernel, every index.
     pub fn full(rays: usize) -> WatertightConfig {
-        let mut offsets = vec![0.0];
-        offsets.extend((0..=7).map(|e| 10f64.powi(e)));
         WatertightConfig {
             rays,
-            offsets,
+            offsets: full_offsets(),
             kernels: TriangleKernelKind::ALL.to_vec(),
             every_index: true,
             seed: 11,

@@ -18,3 +18,17 @@ pub use model::{CameraModel, CameraSample, ModelKind};
 pub use motion::EyeMotion;
 pub use pinhole::{Camera, CameraError, cross_protocol, normalize_protocol};
 pub use thin_lens::ThinLens;
+
+/// Test support: the camera at `(0, 0, 5)` looking at the origin (up `+y`), `size` pixels square.
+#[cfg(test)]
+fn on_z_axis(fov_y_deg: f64, size: u32) -> Camera {
+    Camera::look_at(
+        glam::DVec3::Z * 5.0,
+        glam::DVec3::ZERO,
+        glam::DVec3::Y,
+        fov_y_deg,
+        size,
+        size,
+    )
+    .unwrap()
+}

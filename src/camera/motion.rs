@@ -27,11 +27,11 @@ impl EyeMotion {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::camera::on_z_axis;
 
     #[test]
     fn the_eye_sweeps_the_segment_and_directions_stay_pinhole() {
-        let cam =
-            Camera::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, DVec3::Y, 40.0, 8, 8).unwrap();
+        let cam = on_z_axis(40.0, 8);
         let m = EyeMotion {
             segment: DVec3::new(1.0, 0.0, 0.0),
         };

@@ -156,12 +156,12 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::camera::on_z_axis;
     use glam::Vec3A;
 
     #[test]
     fn centre_ray_points_at_target_and_corners_span_fov() {
-        let cam =
-            Camera::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, DVec3::Y, 90.0, 2, 2).unwrap();
+        let cam = on_z_axis(90.0, 2);
         // 2x2 image, 90 degrees: pixel centres at u, v = +-0.5, tan(45) = 1.
         let d = cam.direction(0, 0);
         let expect = DVec3::new(-0.5, 0.5, -1.0) / (1.5f64).sqrt();

@@ -47,7 +47,7 @@ pub fn concentric_disk([u, v]: [f64; 2]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
+    use crate::camera::on_z_axis;
 
     #[test]
     fn disk_samples_stay_in_the_disk_and_cover_it() {
@@ -65,8 +65,7 @@ mod tests {
 
     #[test]
     fn rays_of_one_film_point_meet_on_the_focal_plane() {
-        let cam =
-            Camera::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, DVec3::Y, 40.0, 8, 8).unwrap();
+        let cam = on_z_axis(40.0, 8);
         let lens = ThinLens {
             aperture_radius: 0.3,
             focus_distance: 5.0,

@@ -169,14 +169,10 @@ impl Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
+    use crate::geometry::test_support::ray;
 
     fn unit() -> Aabb {
         Aabb::new(Vec3A::ZERO, Vec3A::ONE)
-    }
-
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap()
     }
 
     #[test]

@@ -8,9 +8,13 @@ mod hit;
 pub mod overlap;
 mod plane;
 pub mod polyhedron;
+pub mod quadratic;
 mod ray;
+pub mod real;
 pub mod shapes;
 pub mod sphere;
+#[cfg(test)]
+pub(crate) mod test_support;
 pub mod triangle;
 
 pub use aabb::{Aabb, SLAB_FAR_SCALE};

@@ -132,27 +132,16 @@ impl ConvexPolyhedron {
     /// without building them. The cut face's area is the length of the sum of the other faces'
     /// vector areas (a closed surface's vector areas sum to zero).
     pub fn split_areas(&self, normal: Vec3A, offset: f32) -> (f64, f64) {
-        let (n, d) = (normal.as_dvec3(), offset as f64);
-        let (mut below, mut above, mut on) = (Vec::new(), Vec::new(), Vec::new());
-        let mut dist = Vec::new();
         let (mut area_b, mut area_a) = (0.0, 0.0);
         let (mut sum_b, mut sum_a) = (DVec3::ZERO, DVec3::ZERO);
-        let (mut any_b, mut any_a) = (false, false);
-        for f in &self.faces {
-            dist.clear();
-            dist.extend(f.iter().map(|p| n.dot(*p) - d));
-            any_b |= dist.iter().any(|&x| x < 0.0);
-            any_a |= dist.iter().any(|&x| x > 0.0);
-            below.clear();
-            above.clear();
-            on.clear();
-            split_polygon(f, &dist, &mut below, &mut above, &mut on);
-            let (vb, va) = (vector_area2(&below), vector_area2(&above));
+        let cut = self.cut_faces(normal.as_dvec3(), offset as f64, |below, above| {
+            let (vb, va) = (vector_area2(below), vector_area2(above));
             area_b += vb.length();
             area_a += va.length();
             sum_b += vb;
             sum_a += va;
-        }
+        });
+        let (any_b, any_a) = (cut.any_below, cut.any_above);
         // A part with no vertex strictly on its side has no volume; the other part is all.
         if !any_a {
             return (self.area(), 0.0);
@@ -166,29 +155,48 @@ impl ConvexPolyhedron {
         )
     }
 
-    /// The parts where `normal . p <= offset` (below) and `>= offset` (above), each closed by
-    /// the cut face; a part the plane leaves no volume to is empty.
-    pub fn split(&self, normal: Vec3A, offset: f32) -> (ConvexPolyhedron, ConvexPolyhedron) {
-        let (n, d) = (normal.as_dvec3(), offset as f64);
-        let (mut below, mut above) = (Vec::new(), Vec::new());
-        let mut on = Vec::new();
-        let mut dist = Vec::new();
-        let (mut any_b, mut any_a) = (false, false);
+    /// Cuts each face by the plane `n . p = d` ([`split_polygon`]) and hands its parts below and
+    /// above to `parts` (buffers reused from face to face: take what you keep).
+    fn cut_faces(
+        &self,
+        n: DVec3,
+        d: f64,
+        mut parts: impl FnMut(&mut Vec<DVec3>, &mut Vec<DVec3>),
+    ) -> Cut {
+        let (mut below, mut above, mut dist) = (Vec::new(), Vec::new(), Vec::new());
+        let mut cut = Cut {
+            any_below: false,
+            any_above: false,
+            on_plane: Vec::new(),
+        };
         for f in &self.faces {
             dist.clear();
             dist.extend(f.iter().map(|p| n.dot(*p) - d));
-            any_b |= dist.iter().any(|&x| x < 0.0);
-            any_a |= dist.iter().any(|&x| x > 0.0);
-            let (mut b, mut a) = (Vec::new(), Vec::new());
-            split_polygon(f, &dist, &mut b, &mut a, &mut on);
-            if vector_area2(&b) != DVec3::ZERO {
-                below.push(b);
-            }
-            if vector_area2(&a) != DVec3::ZERO {
-                above.push(a);
-            }
+            cut.any_below |= dist.iter().any(|&x| x < 0.0);
+            cut.any_above |= dist.iter().any(|&x| x > 0.0);
+            below.clear();
+            above.clear();
+            split_polygon(f, &dist, &mut below, &mut above, &mut cut.on_plane);
+            parts(&mut below, &mut above);
         }
-        let cap = cut_face(&on, n);
+        cut
+    }
+
+    /// The parts where `normal . p <= offset` (below) and `>= offset` (above), each closed by
+    /// the cut face; a part the plane leaves no volume to is empty.
+    pub fn split(&self, normal: Vec3A, offset: f32) -> (ConvexPolyhedron, ConvexPolyhedron) {
+        let n = normal.as_dvec3();
+        let (mut below, mut above) = (Vec::new(), Vec::new());
+        let cut = self.cut_faces(n, offset as f64, |b, a| {
+            if vector_area2(b) != DVec3::ZERO {
+                below.push(std::mem::take(b));
+            }
+            if vector_area2(a) != DVec3::ZERO {
+                above.push(std::mem::take(a));
+            }
+        });
+        let (any_b, any_a) = (cut.any_below, cut.any_above);
+        let cap = cut_face(&cut.on_plane, n);
         // A part with no vertex strictly on its side has no volume; the other part is all.
         if !any_a {
             return (self.clone(), ConvexPolyhedron::default());
@@ -203,6 +211,15 @@ impl ConvexPolyhedron {
         let cap_above = cap.as_ref().map(|c| c.iter().rev().copied().collect());
         (close(below, cap), close(above, cap_above))
     }
+}
+
+/// What cutting every face of a polyhedron by a plane leaves besides the parts.
+struct Cut {
+    /// Some vertex lies strictly below the plane, some strictly above.
+    any_below: bool,
+    any_above: bool,
+    /// The points where the faces' boundaries meet the plane (the cut face's corners, repeated).
+    on_plane: Vec<DVec3>,
 }
 
 /// The cut face through the points `on` of the plane with unit normal `n`, counter-clockwise

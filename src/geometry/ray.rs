@@ -1,5 +1,6 @@
 //! Rays with everything the kernels and slab tests precompute once per ray.
 
+use super::real::{KernelRay, Real, RealVec};
 use glam::{Vec3, Vec3A};
 use thiserror::Error;
 
@@ -22,15 +23,15 @@ pub enum RayError {
 /// Per-ray constants of the watertight triangle test (Woop, Benthin and Wald 2013): the axis
 /// `kz` on which the direction is largest, the two others `kx`, `ky` (swapped when `dir[kz] < 0`
 /// to keep the winding), and the shear `sx = dir[kx]/dir[kz]`, `sy = dir[ky]/dir[kz]`,
-/// `sz = 1/dir[kz]`.
+/// `sz = 1/dir[kz]`, in the precision `S` of the kernel (`f32` on the hot path).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Shear {
+pub struct Shear<S = f32> {
     pub kx: usize,
     pub ky: usize,
     pub kz: usize,
-    pub sx: f32,
-    pub sy: f32,
-    pub sz: f32,
+    pub sx: S,
+    pub sy: S,
+    pub sz: S,
 }
 
 /// A ray `origin + t * dir` for `t` in the closed interval `[t_min, t_max]`.
@@ -88,7 +89,28 @@ impl Ray {
     /// The point at parameter `t`.
     #[inline]
     pub fn at(&self, t: f32) -> Vec3A {
-        self.origin + self.dir * t
+        KernelRay::at(self, t)
+    }
+}
+
+impl KernelRay for Ray {
+    type Scalar = f32;
+    type Vec = Vec3A;
+    #[inline(always)]
+    fn origin(&self) -> Vec3A {
+        self.origin
+    }
+    #[inline(always)]
+    fn dir(&self) -> Vec3A {
+        self.dir
+    }
+    #[inline(always)]
+    fn t_min(&self) -> f32 {
+        self.t_min
+    }
+    #[inline(always)]
+    fn shear(&self) -> &Shear {
+        &self.shear
     }
 }
 
@@ -108,13 +130,21 @@ impl Shear {
         if dir[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
+        Shear::with_axes([kx, ky, kz], dir)
+    }
+}
+
+impl<S: Real> Shear<S> {
+    /// The shear of `dir` on the axes `[kx, ky, kz]` (chosen by the `f32` ray), computed in the
+    /// precision of `dir`.
+    pub fn with_axes<V: RealVec<Scalar = S>>([kx, ky, kz]: [usize; 3], dir: V) -> Shear<S> {
         Shear {
             kx,
             ky,
             kz,
             sx: dir[kx] / dir[kz],
             sy: dir[ky] / dir[kz],
-            sz: 1.0 / dir[kz],
+            sz: S::ONE / dir[kz],
         }
     }
 }

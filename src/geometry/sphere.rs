@@ -1,9 +1,13 @@
 //! Spheres and the two ray–sphere kernels (algebraic and geometric).
 //!
 //! Both report the smallest root in `[ray.t_min, t_max]`: the near root, or the far one when the
-//! ray starts inside (or the near root lies before `t_min`).
+//! ray starts inside (or the near root lies before `t_min`). Each is written once over the
+//! precision ([`crate::geometry::real`]): the `f32` instance is the kernel every index uses, the
+//! `f64` instance the accuracy study's mirror.
 
-use super::{Aabb, Ray};
+use super::Aabb;
+use super::quadratic::ball_roots;
+use super::real::{KernelRay, Real, RealVec};
 use glam::Vec3A;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,51 +38,45 @@ impl Sphere {
 
 /// Picks the smaller of two roots that lies in `[t_min, t_max]`.
 #[inline(always)]
-fn first_root(t0: f32, t1: f32, ray: &Ray, t_max: f32) -> Option<f32> {
+fn first_root<S: Real>(t0: S, t1: S, ray: &impl KernelRay<Scalar = S>, t_max: S) -> Option<S> {
     let (lo, hi) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-    if lo >= ray.t_min && lo <= t_max {
+    if lo >= ray.t_min() && lo <= t_max {
         Some(lo)
-    } else if hi >= ray.t_min && hi <= t_max {
+    } else if hi >= ray.t_min() && hi <= t_max {
         Some(hi)
     } else {
         None
     }
 }
 
-/// Algebraic kernel, numerically stable (Haines et al., Ray Tracing Gems ch. 7): the
-/// discriminant as `r^2 - |f - (f.d/d.d) d|^2` (no cancellation between `b^2` and `4ac`), and the
-/// roots as `c/q` and `q/a` with `q = -(b' + sign(b') sqrt(a * disc))`, so neither root subtracts
-/// two nearly equal numbers.
+/// Algebraic kernel, numerically stable: the roots of [`ball_roots`] (Haines et al., Ray
+/// Tracing Gems ch. 7) for `f = origin - center`.
 #[inline]
-pub fn intersect_algebraic(s: &Sphere, ray: &Ray, t_max: f32) -> Option<f32> {
-    let f = ray.origin - s.center;
-    let a = ray.dir.dot(ray.dir);
-    let b = f.dot(ray.dir); // half of the usual b
-    let c = f.dot(f) - s.radius * s.radius;
-    let l = f - ray.dir * (b / a);
-    let disc = s.radius * s.radius - l.dot(l);
-    if disc < 0.0 {
-        return None;
-    }
-    let root = (a * disc).sqrt();
-    let q = -(b + root.copysign(b));
-    if q == 0.0 {
-        // b == 0 and disc == 0: a tangent ray through the closest point at t = 0.
-        return first_root(0.0, 0.0, ray, t_max);
-    }
-    first_root(c / q, q / a, ray, t_max)
+pub fn intersect_algebraic<R: KernelRay>(
+    s: &Sphere,
+    ray: &R,
+    t_max: R::Scalar,
+) -> Option<R::Scalar> {
+    let f = ray.origin() - R::Vec::from_f32(s.center);
+    let (t0, t1) = ball_roots(f, ray.dir(), R::Scalar::from(s.radius))?;
+    first_root(t0, t1, ray, t_max)
 }
 
 /// Geometric kernel (the course's `L`, `t_ca`, `d^2`, `t_hc` method) on the normalized direction,
 /// converted back to units of `dir`.
 #[inline]
-pub fn intersect_geometric(s: &Sphere, ray: &Ray, t_max: f32) -> Option<f32> {
-    let len = ray.dir.length();
-    let dn = ray.dir / len;
-    let l = s.center - ray.origin;
+pub fn intersect_geometric<R: KernelRay>(
+    s: &Sphere,
+    ray: &R,
+    t_max: R::Scalar,
+) -> Option<R::Scalar> {
+    let radius = R::Scalar::from(s.radius);
+    let len = ray.dir().length();
+    let dn = ray.dir() / len;
+    let l = R::Vec::from_f32(s.center) - ray.origin();
     let t_ca = l.dot(dn);
     let d2 = l.dot(l) - t_ca * t_ca;
-    let r2 = s.radius * s.radius;
+    let r2 = radius * radius;
     if d2 > r2 {
         return None;
     }
@@ -89,6 +87,7 @@ pub fn intersect_geometric(s: &Sphere, ray: &Ray, t_max: f32) -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Ray;
     use glam::Vec3;
 
     type Kernel = fn(&Sphere, &Ray, f32) -> Option<f32>;

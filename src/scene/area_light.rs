@@ -20,15 +20,11 @@ pub struct AreaLight {
     pub edge1: Vec3,
     pub edge2: Vec3,
     /// Total RGB intensity (default white).
-    #[serde(default = "white")]
+    #[serde(default = "super::white")]
     pub intensity: Vec3,
     /// Strata per edge (default 4, i.e. 16 shadow rays per shaded point).
     #[serde(default = "four")]
     pub samples: u32,
-}
-
-fn white() -> Vec3 {
-    Vec3::ONE
 }
 
 fn four() -> u32 {

@@ -36,6 +36,7 @@ pub struct PointLight {
     pub intensity: Vec3,
 }
 
+/// The default light intensity (point and area lights).
 fn white() -> Vec3 {
     Vec3::ONE
 }

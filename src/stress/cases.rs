@@ -67,6 +67,14 @@ fn dyadic(b: &Aabb, i: [u32; 3], steps: u32) -> Vec3 {
     Vec3::from(b.min + e * Vec3A::new(i[0] as f32, i[1] as f32, i[2] as f32) / steps as f32)
 }
 
+/// A random point `(i, steps)` of [`dyadic`]: `steps = 2^1 .. 2^max_level` cells per axis,
+/// `i` uniform in `0..=steps` per axis.
+fn random_dyadic(rng: &mut SplitMix64, max_level: u64) -> ([u32; 3], u32) {
+    let steps = 1 << (1 + rng.next_u64() % max_level);
+    let i = [0; 3].map(|_| (rng.next_u64() % (steps as u64 + 1)) as u32);
+    (i, steps)
+}
+
 fn random_dir(rng: &mut SplitMix64) -> Vec3 {
     let w = 1.0 - 2.0 * rng.next_unit();
     let phi = std::f64::consts::TAU * rng.next_unit();
@@ -86,8 +94,7 @@ fn axis_parallel(s: &Scene, n: usize) -> Vec<Ray> {
     let mut rng = SplitMix64::new(5);
     let mut rays = Vec::new();
     while rays.len() < n {
-        let steps = 1 << (1 + rng.next_u64() % 5);
-        let i = [0; 3].map(|_| (rng.next_u64() % (steps as u64 + 1)) as u32);
+        let (i, steps) = random_dyadic(&mut rng, 5);
         let o = dyadic(&grown, i, steps);
         let o = if rays.len().is_multiple_of(3) {
             dyadic(&b, i, steps)
@@ -127,8 +134,7 @@ fn cell_boundaries(s: &Scene, n: usize) -> Vec<Ray> {
     let mut rng = SplitMix64::new(9);
     let mut rays = Vec::new();
     while rays.len() < n {
-        let steps = 1 << (1 + rng.next_u64() % 7);
-        let i = [0; 3].map(|_| (rng.next_u64() % (steps as u64 + 1)) as u32);
+        let (i, steps) = random_dyadic(&mut rng, 7);
         let o = dyadic(&b, i, steps);
         rays.extend(ray(o, random_dir(&mut rng)));
         rays.extend(ray(o, dirs[(rng.next_u64() % 24) as usize]));
@@ -144,8 +150,7 @@ fn in_split_planes(s: &Scene, n: usize) -> Vec<Ray> {
     let mut rays = Vec::new();
     while rays.len() < n {
         let axis = (rng.next_u64() % 3) as usize;
-        let steps = 1 << (1 + rng.next_u64() % 6);
-        let mut i = [0; 3].map(|_| (rng.next_u64() % (steps as u64 + 1)) as u32);
+        let (mut i, steps) = random_dyadic(&mut rng, 6);
         i[axis] = (rng.next_u64() % (steps as u64 + 1)) as u32;
         let mut o = dyadic(&b, i, steps);
         // Start outside the bounds on the other axes half of the time.

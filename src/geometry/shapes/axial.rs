@@ -9,6 +9,20 @@ use glam::Vec3A;
 /// involved), so rims are watertight.
 pub(super) const RIM_SLACK: f32 = 8.0 * f32::EPSILON;
 
+/// Gives a capped solid with an [`AxialSegment`] field `seg` its axis, height and radius
+/// ([`AxialSegment::axis`], `height`, `radius`) through `Deref`.
+macro_rules! deref_to_segment {
+    ($shape:ty) => {
+        /// The axis, its height and radius ([`AxialSegment::axis`], `height`, `radius`).
+        impl std::ops::Deref for $shape {
+            type Target = AxialSegment;
+            fn deref(&self) -> &AxialSegment {
+                &self.seg
+            }
+        }
+    };
+}
+
 /// The axis of a capped cylinder or cone: the segment from `start` along the unit `axis` for
 /// `height`, and the `radius` of its widest disc (the cylinder's caps, the cone's base).
 ///
@@ -139,27 +153,22 @@ impl AxialRay {
 /// Test support: rays aimed from random outside points at random points of a rim.
 #[cfg(test)]
 pub(super) mod rim_test {
+    use crate::geometry::test_support::unit_floats;
     use crate::geometry::{Aabb, Ray};
-    use glam::Vec3A;
+    use glam::{DVec3, Vec3A};
 
     /// Shoots `n` rays from random points in `[-4, 4]^3` outside `bounds` at `rim(angle, i)` and
-    /// returns those that miss (or hit beyond the rim) although `penetration` (how deep the
-    /// exact line gets into the solid near `t = 1`) says they enter it.
-    pub fn slipped(
+    /// asserts that none slips: misses (or hits beyond the rim) although its exact line enters
+    /// the solid (`depth`, how far a point lies inside it, exceeds `1e-6` near `t = 1`).
+    pub fn assert_rim_watertight(
         seed: u64,
         n: usize,
         bounds: Aabb,
         rim: impl Fn(f32, usize) -> Vec3A,
         hit: impl Fn(&Ray) -> Option<f32>,
-        penetration: impl Fn(&Ray) -> f64,
-    ) -> Vec<(Ray, Option<f32>)> {
-        let mut s = seed;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 40) as f32) / (1u64 << 24) as f32
-        };
+        depth: impl Fn(DVec3) -> f64,
+    ) {
+        let mut next = unit_floats(seed);
         let mut slipped = Vec::new();
         for i in 0..n {
             let target = rim(std::f32::consts::TAU * next(), i);
@@ -172,15 +181,20 @@ pub(super) mod rim_test {
                 Some(t) if t <= 1.0 + 1e-4 => {}
                 // Only a ray whose exact line enters the solid must hit; one that just touches
                 // the rim (on the silhouette, within the rounding of the aim) may miss.
-                other if penetration(&ray) > 1e-6 => slipped.push((ray, other)),
+                other if deepest(&ray, &depth) > 1e-6 => slipped.push((ray, other)),
                 _ => {}
             }
         }
-        slipped
+        assert!(
+            slipped.is_empty(),
+            "{} slipped, first {:?}",
+            slipped.len(),
+            slipped[0]
+        );
     }
 
     /// The largest of `depth(point)` over the exact line of `ray` for `t` in `[0.99, 1.01]`.
-    pub fn deepest(ray: &Ray, depth: impl Fn(glam::DVec3) -> f64) -> f64 {
+    fn deepest(ray: &Ray, depth: impl Fn(DVec3) -> f64) -> f64 {
         let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
         (0..=2000)
             .map(|k| depth(o + d * (0.99 + 0.02 * k as f64 / 2000.0)))

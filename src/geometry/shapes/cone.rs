@@ -72,13 +72,7 @@ impl Cone {
     }
 }
 
-/// The axis, its height and radius ([`AxialSegment::axis`], `height`, `radius`).
-impl std::ops::Deref for Cone {
-    type Target = AxialSegment;
-    fn deref(&self) -> &AxialSegment {
-        &self.seg
-    }
-}
+deref_to_segment!(Cone);
 
 /// The first crossing of the side or the base.
 ///
@@ -121,6 +115,7 @@ pub fn intersect(c: &Cone, ray: &Ray, t_max: f32) -> Option<f32> {
 mod tests {
     use super::super::axial::rim_test;
     use super::*;
+    use crate::geometry::test_support::{assert_bounds_near, close, ray};
     use glam::Vec3;
 
     /// Apex at the origin, base radius 1 at z = 2 (slope 1/2).
@@ -129,15 +124,7 @@ mod tests {
     }
 
     fn hit(c: &Cone, o: [f32; 3], d: [f32; 3]) -> Option<f32> {
-        intersect(
-            c,
-            &Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap(),
-            f32::INFINITY,
-        )
-    }
-
-    fn close(a: Option<f32>, b: f32) -> bool {
-        a.is_some_and(|a| (a - b).abs() < 1e-5)
+        intersect(c, &ray(o, d), f32::INFINITY)
     }
 
     #[test]
@@ -199,34 +186,24 @@ mod tests {
             c.seg.height as f64,
             c.seg.radius as f64,
         );
-        let slipped = rim_test::slipped(
+        rim_test::assert_rim_watertight(
             5,
             20000,
             c.bounds(),
             |a, _| c.base() + (u * a.cos() + v * a.sin()) * c.seg.radius,
             |ray| intersect(&c, ray, f32::INFINITY),
-            |ray| {
-                rim_test::deepest(ray, |p| {
-                    let z = (p - o).dot(w);
-                    let radial = (p - o - w * z).length();
-                    (r * z / h - radial).min(h - z)
-                })
+            |p| {
+                let z = (p - o).dot(w);
+                let radial = (p - o - w * z).length();
+                (r * z / h - radial).min(h - z)
             },
-        );
-        assert!(
-            slipped.is_empty(),
-            "{} slipped, first {:?}",
-            slipped.len(),
-            slipped[0]
         );
     }
 
     #[test]
     fn bounds_and_normals() {
         let c = up_z();
-        let b = c.bounds();
-        assert!((b.min - Vec3A::new(-1.0, -1.0, 0.0)).abs().max_element() < 1e-5);
-        assert!((b.max - Vec3A::new(1.0, 1.0, 2.0)).abs().max_element() < 1e-5);
+        assert_bounds_near(c.bounds(), [-1.0, -1.0, 0.0], [1.0, 1.0, 2.0]);
         assert_eq!(c.normal_at(Vec3A::new(0.2, 0.1, 2.0)), Vec3A::Z);
         let n = c.normal_at(Vec3A::new(0.5, 0.0, 1.0));
         assert!(

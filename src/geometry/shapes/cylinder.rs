@@ -1,8 +1,8 @@
 //! Finite, capped, arbitrarily oriented circular cylinders.
 
 use super::axial::{AxialRay, AxialSegment, split};
-use super::quadratic::ball_roots;
 use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
+use crate::geometry::quadratic::ball_roots;
 use crate::geometry::{Aabb, Ray};
 use glam::Vec3A;
 
@@ -66,13 +66,7 @@ impl Cylinder {
     }
 }
 
-/// The axis, its height and radius ([`AxialSegment::axis`], `height`, `radius`).
-impl std::ops::Deref for Cylinder {
-    type Target = AxialSegment;
-    fn deref(&self) -> &AxialSegment {
-        &self.seg
-    }
-}
+deref_to_segment!(Cylinder);
 
 /// The first crossing of the side (stable quadratic on the components off the axis, valid for
 /// `0 <= z <= height`) or a cap (plane `z = 0` or `z = height`, valid within the radius).
@@ -89,15 +83,12 @@ pub fn intersect(c: &Cylinder, ray: &Ray, t_max: f32) -> Option<f32> {
 mod tests {
     use super::super::axial::rim_test;
     use super::*;
+    use crate::geometry::test_support::{assert_bounds_near, ray};
     use glam::Vec3;
 
     /// Radius 1 around the x axis from x = 2 to x = 6.
     fn along_x() -> Cylinder {
         Cylinder::new(Vec3A::new(2.0, 0.0, 0.0), Vec3A::new(6.0, 0.0, 0.0), 1.0).unwrap()
-    }
-
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap()
     }
 
     fn hit(c: &Cylinder, o: [f32; 3], d: [f32; 3]) -> Option<f32> {
@@ -161,7 +152,7 @@ mod tests {
         let c = Cylinder::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::new(0.7, 1.1, 0.5), 0.35).unwrap();
         let (u, v) = c.seg.axis.any_orthonormal_pair();
         let (b, w) = (c.seg.start.as_dvec3(), c.seg.axis.as_dvec3());
-        let slipped = rim_test::slipped(
+        rim_test::assert_rim_watertight(
             3,
             20000,
             c.bounds(),
@@ -170,30 +161,20 @@ mod tests {
                 end + (u * a.cos() + v * a.sin()) * c.seg.radius
             },
             |r| intersect(&c, r, f32::INFINITY),
-            |r| {
-                rim_test::deepest(r, |p| {
-                    let z = (p - b).dot(w);
-                    let radial = (p - b - w * z).length();
-                    (c.seg.radius as f64 - radial)
-                        .min(z)
-                        .min(c.seg.height as f64 - z)
-                })
+            |p| {
+                let z = (p - b).dot(w);
+                let radial = (p - b - w * z).length();
+                (c.seg.radius as f64 - radial)
+                    .min(z)
+                    .min(c.seg.height as f64 - z)
             },
-        );
-        assert!(
-            slipped.is_empty(),
-            "{} slipped, first {:?}",
-            slipped.len(),
-            slipped[0]
         );
     }
 
     #[test]
     fn bounds_and_normals() {
         let c = along_x();
-        let b = c.bounds();
-        assert!((b.min - Vec3A::new(2.0, -1.0, -1.0)).abs().max_element() < 1e-5);
-        assert!((b.max - Vec3A::new(6.0, 1.0, 1.0)).abs().max_element() < 1e-5);
+        assert_bounds_near(c.bounds(), [2.0, -1.0, -1.0], [6.0, 1.0, 1.0]);
         assert_eq!(c.normal_at(Vec3A::new(4.0, 0.0, 1.0)), Vec3A::Z);
         assert_eq!(c.normal_at(Vec3A::new(2.0, 0.3, 0.1)), -Vec3A::X);
         assert_eq!(c.normal_at(Vec3A::new(6.0, 0.3, 0.1)), Vec3A::X);

@@ -1,7 +1,7 @@
 //! Ellipsoids with arbitrary axes, intersected in the frame where they are the unit sphere.
 
-use super::quadratic::ball_roots;
-use super::{ShapeError, first_hit, orthonormal, padded_bounds};
+use super::{ShapeError, checked_frame, first_hit, padded_bounds};
+use crate::geometry::quadratic::ball_roots;
 use crate::geometry::{Aabb, Ray};
 use glam::{Mat3A, Vec3A};
 
@@ -22,15 +22,8 @@ pub struct Ellipsoid {
 
 impl Ellipsoid {
     pub fn new(center: Vec3A, radii: Vec3A, axes: Mat3A) -> Result<Ellipsoid, ShapeError> {
-        if !center.is_finite() {
-            return Err(ShapeError::NonFinite("ellipsoid center"));
-        }
-        for r in radii.to_array() {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(ShapeError::NotPositive("ellipsoid radius", r));
-            }
-        }
-        let axes = orthonormal("ellipsoid axes", axes)?;
+        let names = ["ellipsoid center", "ellipsoid radius", "ellipsoid axes"];
+        let axes = checked_frame(center, radii, axes, names)?;
         let inv = Vec3A::ONE / radii;
         let to_unit = Mat3A::from_cols(axes.row(0) * inv, axes.row(1) * inv, axes.row(2) * inv);
         let mut shape = Ellipsoid {
@@ -91,7 +84,7 @@ pub fn intersect(e: &Ellipsoid, ray: &Ray, t_max: f32) -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
+    use crate::geometry::test_support::{assert_bounds_near, close, ray};
 
     /// Radii (3, 1, 0.5) along world (y, -x, z) after a 90 degree turn about z, centred at
     /// (0, 0, 5): it spans |x| <= 1, |y| <= 3, |z - 5| <= 0.5.
@@ -105,15 +98,7 @@ mod tests {
     }
 
     fn hit(e: &Ellipsoid, o: [f32; 3], d: [f32; 3]) -> Option<f32> {
-        intersect(
-            e,
-            &Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap(),
-            f32::INFINITY,
-        )
-    }
-
-    fn close(a: Option<f32>, b: f32) -> bool {
-        a.is_some_and(|a| (a - b).abs() < 1e-5)
+        intersect(e, &ray(o, d), f32::INFINITY)
     }
 
     #[test]
@@ -137,9 +122,7 @@ mod tests {
     #[test]
     fn bounds_and_normals() {
         let e = turned();
-        let b = e.bounds();
-        assert!((b.min - Vec3A::new(-1.0, -3.0, 4.5)).abs().max_element() < 1e-5);
-        assert!((b.max - Vec3A::new(1.0, 3.0, 5.5)).abs().max_element() < 1e-5);
+        assert_bounds_near(e.bounds(), [-1.0, -3.0, 4.5], [1.0, 3.0, 5.5]);
         assert!((e.normal_at(Vec3A::new(0.0, 3.0, 5.0)) - Vec3A::Y).length() < 1e-6);
         assert!((e.normal_at(Vec3A::new(0.0, 0.0, 4.5)) + Vec3A::Z).length() < 1e-6);
         assert!(Ellipsoid::new(Vec3A::ZERO, Vec3A::new(1.0, 0.0, 1.0), Mat3A::IDENTITY).is_err());

@@ -10,13 +10,13 @@
 //! Shapes are built by validating constructors only (fields are private), so a [`Shape`] always
 //! has finite data, positive sizes, unit orthonormal frames and planar, non-degenerate polygons.
 
+#[macro_use]
 mod axial;
 pub mod cone;
 pub mod cylinder;
 pub mod ellipsoid;
 pub mod obb;
 pub mod polygon;
-mod quadratic;
 
 pub use axial::AxialSegment;
 pub use cone::Cone;
@@ -155,6 +155,28 @@ fn padded_bounds(center: Vec3A, half: Vec3A) -> Aabb {
     let pad = 8.0 * f32::EPSILON * (center.abs() + half).max_element() + f32::MIN_POSITIVE;
     let half = half + Vec3A::splat(pad);
     Aabb::new(center - half, center + half)
+}
+
+/// Checks the frame of a box or an ellipsoid: a finite `center`, every size finite and `> 0`,
+/// orthonormal `axes`; returns the axes renormalized ([`orthonormal`]). `[center, size, axes]`
+/// name the three in the error (`["box center", "box half-extent", "box axes"]`).
+fn checked_frame(
+    center: Vec3A,
+    sizes: Vec3A,
+    axes: Mat3A,
+    [center_name, size_name, axes_name]: [&'static str; 3],
+) -> Result<Mat3A, ShapeError> {
+    if !center.is_finite() {
+        return Err(ShapeError::NonFinite(center_name));
+    }
+    if let Some(bad) = sizes
+        .to_array()
+        .into_iter()
+        .find(|s| !(s.is_finite() && *s > 0.0))
+    {
+        return Err(ShapeError::NotPositive(size_name, bad));
+    }
+    orthonormal(axes_name, axes)
 }
 
 /// Checks that the columns of `m` form an orthonormal basis (to `1e-4`), and returns it with

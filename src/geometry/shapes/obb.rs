@@ -1,9 +1,10 @@
 //! Oriented boxes and their two kernels: the slab method in the box's frame, and the course's
 //! "intersect the three front-facing planes, return the closest".
 
-use super::{ShapeError, first_hit, orthonormal, padded_bounds};
+use super::{ShapeError, checked_frame, first_hit, padded_bounds};
 use crate::geometry::aabb_kernel::slab_first_hit;
 use crate::geometry::overlap::OVERLAP_PAD;
+use crate::geometry::real::Real;
 use crate::geometry::{Aabb, Ray};
 use glam::{Mat3A, Vec3A};
 
@@ -24,15 +25,8 @@ pub struct Obb {
 
 impl Obb {
     pub fn new(center: Vec3A, half_extents: Vec3A, axes: Mat3A) -> Result<Obb, ShapeError> {
-        if !center.is_finite() {
-            return Err(ShapeError::NonFinite("box center"));
-        }
-        for h in half_extents.to_array() {
-            if !(h.is_finite() && h > 0.0) {
-                return Err(ShapeError::NotPositive("box half-extent", h));
-            }
-        }
-        let axes = orthonormal("box axes", axes)?;
+        let names = ["box center", "box half-extent", "box axes"];
+        let axes = checked_frame(center, half_extents, axes, names)?;
         let mut shape = Obb {
             center,
             half: half_extents,
@@ -124,6 +118,17 @@ pub fn intersect_slabs(b: &Obb, ray: &Ray, t_max: f32) -> Option<f32> {
     slab_first_hit(-b.half, b.half, o, Vec3A::ONE / d, ray.t_min, t_max)
 }
 
+/// The crossing of the local ray `o + t d` (one axis) with that axis's face plane `±h` that faces
+/// the ray (the one behind it if `back`), in the ray's precision; `None` when `d = 0`.
+#[inline(always)]
+pub fn face_plane_t<S: Real>(h: S, o: S, d: S, back: bool) -> Option<S> {
+    if d == S::ZERO {
+        return None;
+    }
+    let plus_face = (d < S::ZERO) != back;
+    Some(((if plus_face { h } else { -h }) - o) / d)
+}
+
 /// The course's method: intersect the three front-facing face planes (outward normal against
 /// the ray) and keep the closest crossing that lands on its face; a ray starting inside sees its
 /// front faces behind it, so then the three back faces give the exit.
@@ -134,11 +139,9 @@ pub fn intersect_front_planes(b: &Obb, ray: &Ray, t_max: f32) -> Option<f32> {
     for back in [false, true] {
         let mut cand = [f32::NAN; 3];
         for (i, c) in cand.iter_mut().enumerate() {
-            if d[i] == 0.0 {
+            let Some(t) = face_plane_t(h[i], o[i], d[i], back) else {
                 continue;
-            }
-            let plus_face = (d[i] < 0.0) != back;
-            let t = ((if plus_face { h[i] } else { -h[i] }) - o[i]) / d[i];
+            };
             let (j, k) = ((i + 1) % 3, (i + 2) % 3);
             if (o[j] + t * d[j]).abs() <= h[j] && (o[k] + t * d[k]).abs() <= h[k] {
                 *c = t;
@@ -154,6 +157,7 @@ pub fn intersect_front_planes(b: &Obb, ray: &Ray, t_max: f32) -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::test_support::{RayCase, assert_bounds_near, close, ray, unit_floats};
     use glam::Vec3;
 
     type Kernel = fn(&Obb, &Ray, f32) -> Option<f32>;
@@ -173,72 +177,38 @@ mod tests {
         .unwrap()
     }
 
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap()
-    }
-
-    fn close(a: Option<f32>, b: f32) -> bool {
-        a.is_some_and(|a| (a - b).abs() < 1e-5)
-    }
-
     #[test]
     fn hand_computed_cases() {
         let b = rotated();
-        for (name, k) in KERNELS {
+        let inf = f32::INFINITY;
+        // The hit's t within 1e-5, or a miss.
+        let cases: [RayCase; 9] = [
             // From the origin along +x: enters the face x = 3.
-            assert!(
-                close(k(&b, &ray([0.0; 3], [1.0, 0.0, 0.0]), f32::INFINITY), 3.0),
-                "{name}"
-            );
+            ([0.0; 3], [1.0, 0.0, 0.0], inf, Some(3.0)),
             // Scaled direction: t in units of dir.
-            assert!(
-                close(k(&b, &ray([0.0; 3], [2.0, 0.0, 0.0]), f32::INFINITY), 1.5),
-                "{name}"
-            );
+            ([0.0; 3], [2.0, 0.0, 0.0], inf, Some(1.5)),
             // From above along -z: the top face z = 0.5.
-            assert!(
-                close(
-                    k(&b, &ray([4.0, 0.5, 3.0], [0.0, 0.0, -1.0]), f32::INFINITY),
-                    2.5
-                ),
-                "{name}"
-            );
+            ([4.0, 0.5, 3.0], [0.0, 0.0, -1.0], inf, Some(2.5)),
             // Inside: the exit through y = 1.
-            assert!(
-                close(
-                    k(&b, &ray([5.0, 0.0, 0.0], [0.0, 1.0, 0.0]), f32::INFINITY),
-                    1.0
-                ),
-                "{name}"
-            );
+            ([5.0, 0.0, 0.0], [0.0, 1.0, 0.0], inf, Some(1.0)),
             // Misses: beside, behind, beyond t_max.
-            assert_eq!(
-                k(&b, &ray([0.0, 1.5, 0.0], [1.0, 0.0, 0.0]), f32::INFINITY),
-                None,
-                "{name}"
-            );
-            assert_eq!(
-                k(&b, &ray([8.0, 0.0, 0.0], [1.0, 0.0, 0.0]), f32::INFINITY),
-                None,
-                "{name}"
-            );
-            assert_eq!(k(&b, &ray([0.0; 3], [1.0, 0.0, 0.0]), 2.9), None, "{name}");
+            ([0.0, 1.5, 0.0], [1.0, 0.0, 0.0], inf, None),
+            ([8.0, 0.0, 0.0], [1.0, 0.0, 0.0], inf, None),
+            ([0.0; 3], [1.0, 0.0, 0.0], 2.9, None),
             // Through the edge x = 3, y = 1 diagonally: entry at t = 1 (point (3, 1, 0)).
-            assert!(
-                close(
-                    k(&b, &ray([2.0, 2.0, 0.0], [1.0, -1.0, 0.0]), f32::INFINITY),
-                    1.0
-                ),
-                "{name}"
-            );
+            ([2.0, 2.0, 0.0], [1.0, -1.0, 0.0], inf, Some(1.0)),
             // Grazing the top face (in its plane, y and z fixed): the face is closed, so a hit.
-            assert!(
-                close(
-                    k(&b, &ray([0.0, 0.0, 0.5], [1.0, 0.0, 0.0]), f32::INFINITY),
-                    3.0
-                ),
-                "{name}"
-            );
+            ([0.0, 0.0, 0.5], [1.0, 0.0, 0.0], inf, Some(3.0)),
+        ];
+        for (name, k) in KERNELS {
+            for (o, d, t_max, expected) in cases {
+                let t = k(&b, &ray(o, d), t_max);
+                let ok = expected.map_or(t.is_none(), |e| close(t, e));
+                assert!(
+                    ok,
+                    "{name} from {o:?} along {d:?}: {t:?}, expected {expected:?}"
+                );
+            }
         }
     }
 
@@ -250,13 +220,8 @@ mod tests {
             Mat3A::from_axis_angle(Vec3::new(1.0, 2.0, 3.0).normalize(), 0.7),
         )
         .unwrap();
-        let mut s = 99u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 40) as f32) / (1u64 << 24) as f32 * 4.0 - 2.0
-        };
+        let mut unit = unit_floats(99);
+        let mut next = || unit() * 4.0 - 2.0;
         let mut hits = 0;
         for _ in 0..4000 {
             let o = Vec3::new(next(), next(), next()) * 1.5;
@@ -286,9 +251,7 @@ mod tests {
     #[test]
     fn bounds_normals_and_overlap() {
         let b = rotated();
-        let bb = b.bounds();
-        assert!((bb.min - Vec3A::new(3.0, -1.0, -0.5)).abs().max_element() < 1e-5);
-        assert!((bb.max - Vec3A::new(7.0, 1.0, 0.5)).abs().max_element() < 1e-5);
+        assert_bounds_near(b.bounds(), [3.0, -1.0, -0.5], [7.0, 1.0, 0.5]);
         assert!((b.normal_at(Vec3A::new(3.0, 0.2, 0.1)) - Vec3A::NEG_X).length() < 1e-6);
         assert!((b.normal_at(Vec3A::new(6.0, 0.2, 0.5)) - Vec3A::Z).length() < 1e-6);
         // A box rotated 45 degrees about z: its bounds touch the cell's corner, the box does not.

@@ -177,6 +177,7 @@ pub fn intersect_concave(p: &Polygon, ray: &Ray, t_max: f32) -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::test_support::{RayCase, ray, unit_floats};
     use glam::Vec3;
 
     fn v(x: f32, y: f32) -> Vec3A {
@@ -196,64 +197,63 @@ mod tests {
         .unwrap()
     }
 
-    fn down(x: f32, y: f32) -> Ray {
-        Ray::infinite(Vec3::new(x, y, 5.0), Vec3::new(0.0, 0.0, -1.0)).unwrap()
+    /// Straight down onto the plane z = 2 from z = 5.
+    const DOWN: [f32; 3] = [0.0, 0.0, -1.0];
+    const INF: f32 = f32::INFINITY;
+
+    /// `kernel` on `poly` gives exactly the expected answer for each ray
+    /// `(origin, direction, t_max, expected)`.
+    fn check(kernel: fn(&Polygon, &Ray, f32) -> Option<f32>, poly: &Polygon, cases: &[RayCase]) {
+        for &(o, d, t_max, expected) in cases {
+            assert_eq!(
+                kernel(poly, &ray(o, d), t_max),
+                expected,
+                "{o:?} along {d:?}"
+            );
+        }
     }
 
     #[test]
     fn convex_hand_computed() {
         let sq = Polygon::convex(vec![v(0.0, 0.0), v(2.0, 0.0), v(2.0, 2.0), v(0.0, 2.0)]).unwrap();
-        assert_eq!(
-            intersect_convex(&sq, &down(1.0, 1.0), f32::INFINITY),
-            Some(3.0)
+        check(
+            intersect_convex,
+            &sq,
+            &[
+                ([1.0, 1.0, 5.0], DOWN, INF, Some(3.0)),
+                // Both sides, scaled direction, on an edge and a vertex (closed).
+                ([1.0, 1.0, 0.0], [0.0, 0.0, 0.5], INF, Some(4.0)),
+                ([2.0, 1.0, 5.0], DOWN, INF, Some(3.0)),
+                ([0.0, 0.0, 5.0], DOWN, INF, Some(3.0)),
+                ([2.5, 1.0, 5.0], DOWN, INF, None),
+                ([1.0, 1.0, 5.0], DOWN, 2.5, None),
+                // Grazing: a ray in the plane is parallel to it, so a miss.
+                ([-1.0, 1.0, 2.0], [1.0, 0.0, 0.0], INF, None),
+                // Oblique through the centre: from (0,0,0) toward (1,1,2) reaches it at t = 1.
+                ([0.0; 3], [1.0, 1.0, 2.0], INF, Some(1.0)),
+            ],
         );
-        // Both sides, scaled direction, on an edge and a vertex (closed).
-        let up = Ray::infinite(Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 0.0, 0.5)).unwrap();
-        assert_eq!(intersect_convex(&sq, &up, f32::INFINITY), Some(4.0));
-        assert_eq!(
-            intersect_convex(&sq, &down(2.0, 1.0), f32::INFINITY),
-            Some(3.0)
-        );
-        assert_eq!(
-            intersect_convex(&sq, &down(0.0, 0.0), f32::INFINITY),
-            Some(3.0)
-        );
-        assert_eq!(intersect_convex(&sq, &down(2.5, 1.0), f32::INFINITY), None);
-        assert_eq!(intersect_convex(&sq, &down(1.0, 1.0), 2.5), None);
-        // Grazing: a ray in the plane is parallel to it, so a miss.
-        let grazing = Ray::infinite(Vec3::new(-1.0, 1.0, 2.0), Vec3::X).unwrap();
-        assert_eq!(intersect_convex(&sq, &grazing, f32::INFINITY), None);
-        // Oblique through the centre: from (0,0,0) toward (1,1,2) reaches it at t = 1.
-        let oblique = Ray::infinite(Vec3::ZERO, Vec3::new(1.0, 1.0, 2.0)).unwrap();
-        assert_eq!(intersect_convex(&sq, &oblique, f32::INFINITY), Some(1.0));
     }
 
     #[test]
     fn concave_hand_computed() {
         let l = ell();
-        assert_eq!(
-            intersect_concave(&l, &down(0.5, 0.5), f32::INFINITY),
-            Some(3.0)
+        check(
+            intersect_concave,
+            &l,
+            &[
+                ([0.5, 0.5, 5.0], DOWN, INF, Some(3.0)),
+                ([1.5, 0.5, 5.0], DOWN, INF, Some(3.0)),
+                ([0.5, 1.5, 5.0], DOWN, INF, Some(3.0)),
+                // The notch and outside.
+                ([1.5, 1.5, 5.0], DOWN, INF, None),
+                ([-0.5, 0.5, 5.0], DOWN, INF, None),
+                // The half-line from (0.5, 1.0) passes exactly through the reflex vertex (1, 1)
+                // and along the edge y = 1: the half-open rule still counts one crossing.
+                ([0.5, 1.0, 5.0], DOWN, INF, Some(3.0)),
+                ([-1.0, 0.5, 2.0], [1.0, 0.0, 0.0], INF, None),
+            ],
         );
-        assert_eq!(
-            intersect_concave(&l, &down(1.5, 0.5), f32::INFINITY),
-            Some(3.0)
-        );
-        assert_eq!(
-            intersect_concave(&l, &down(0.5, 1.5), f32::INFINITY),
-            Some(3.0)
-        );
-        // The notch and outside.
-        assert_eq!(intersect_concave(&l, &down(1.5, 1.5), f32::INFINITY), None);
-        assert_eq!(intersect_concave(&l, &down(-0.5, 0.5), f32::INFINITY), None);
-        // The half-line from (0.5, 1.0) passes exactly through the reflex vertex (1, 1) and
-        // along the edge y = 1: the half-open rule still counts one crossing.
-        assert_eq!(
-            intersect_concave(&l, &down(0.5, 1.0), f32::INFINITY),
-            Some(3.0)
-        );
-        let grazing = Ray::infinite(Vec3::new(-1.0, 0.5, 2.0), Vec3::X).unwrap();
-        assert_eq!(intersect_concave(&l, &grazing, f32::INFINITY), None);
         assert!(Polygon::convex(l.vertices().to_vec()).is_err());
     }
 
@@ -279,13 +279,7 @@ mod tests {
             v(2.0, 2.0),
         ])
         .unwrap();
-        let mut s = 7u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 40) as f32) / (1u64 << 24) as f32
-        };
+        let mut next = unit_floats(7);
         let mut checked = 0;
         for i in 0..3000 {
             let target = match i % 3 {

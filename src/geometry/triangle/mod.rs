@@ -18,6 +18,9 @@ pub use parametric::Parametric;
 pub use plane_edges::PlaneEdges;
 pub use watertight::Watertight;
 
+pub(crate) use super::real::in_interval;
+
+use super::real::{KernelRay, RealVec};
 use super::{Aabb, Ray};
 use glam::Vec3A;
 use serde::{Deserialize, Serialize};
@@ -96,6 +99,30 @@ pub trait TriangleKernel: Copy + Default + Send + Sync + 'static {
     }
 }
 
+/// A triangle kernel written once over the precision ([`crate::geometry::real`]): its `f32`
+/// instance is its [`TriangleKernel::intersect`], its `f64` instance the accuracy study's mirror
+/// (same formulas, same order of operations, same acceptance tests).
+pub trait RealKernel: Copy + Default + Send + Sync + 'static {
+    /// The name used on the command line and in reports.
+    const NAME: &'static str;
+    /// `Some(t)` when the ray hits the triangle with corners `v` at `t` in `[ray.t_min, t_max]`.
+    fn on_corners<R: KernelRay>(v: [R::Vec; 3], ray: &R, t_max: R::Scalar) -> Option<R::Scalar>;
+
+    /// [`RealKernel::on_corners`] on the corners of `tri`, taken exactly in the ray's precision.
+    #[inline(always)]
+    fn intersect_in<R: KernelRay>(tri: &Triangle, ray: &R, t_max: R::Scalar) -> Option<R::Scalar> {
+        Self::on_corners(tri.v.map(R::Vec::from_f32), ray, t_max)
+    }
+}
+
+impl<K: RealKernel> TriangleKernel for K {
+    const NAME: &'static str = <K as RealKernel>::NAME;
+    #[inline(always)]
+    fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
+        K::intersect_in(tri, ray, t_max)
+    }
+}
+
 /// The selectable triangle kernels (run-time name of a [`TriangleKernel`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -120,10 +147,10 @@ impl TriangleKernelKind {
 
     pub fn name(self) -> &'static str {
         match self {
-            TriangleKernelKind::PlaneEdges => PlaneEdges::NAME,
-            TriangleKernelKind::Parametric => Parametric::NAME,
-            TriangleKernelKind::MollerTrumbore => MollerTrumbore::NAME,
-            TriangleKernelKind::Watertight => Watertight::NAME,
+            TriangleKernelKind::PlaneEdges => <PlaneEdges as RealKernel>::NAME,
+            TriangleKernelKind::Parametric => <Parametric as RealKernel>::NAME,
+            TriangleKernelKind::MollerTrumbore => <MollerTrumbore as RealKernel>::NAME,
+            TriangleKernelKind::Watertight => <Watertight as RealKernel>::NAME,
             TriangleKernelKind::Exact => Exact::NAME,
         }
     }
@@ -151,15 +178,10 @@ impl std::fmt::Display for TriangleKernelKind {
     }
 }
 
-/// Accepts `t` when it lies in `[ray.t_min, t_max]` (false for NaN).
-#[inline(always)]
-pub(crate) fn in_interval(t: f32, ray: &Ray, t_max: f32) -> Option<f32> {
-    (t >= ray.t_min && t <= t_max).then_some(t)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::test_support::unit_floats;
     use glam::Vec3;
 
     fn tri() -> Triangle {
@@ -205,13 +227,7 @@ mod tests {
     #[test]
     fn kernels_agree_inside_and_outside() {
         // Deterministic pseudo-random rays clearly inside or clearly outside the triangle.
-        let mut s = 12345u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 40) as f32) / (1u64 << 24) as f32
-        };
+        let mut next = unit_floats(12345);
         let t = tri();
         for _ in 0..2000 {
             let (b1, b2) = (next(), next());

@@ -2,29 +2,30 @@
 //! products sharing `p = d x e2` and `q = s x e1`. Fast, not watertight: rays through shared
 //! edges can slip between the two triangles.
 
-use super::{Ray, Triangle, TriangleKernel, in_interval};
+use super::RealKernel;
+use crate::geometry::real::{KernelRay, Real, RealVec, in_interval};
 
-impl TriangleKernel for MollerTrumbore {
+impl RealKernel for MollerTrumbore {
     const NAME: &'static str = "moller-trumbore";
 
-    #[inline]
-    fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
-        let e1 = tri.v[1] - tri.v[0];
-        let e2 = tri.v[2] - tri.v[0];
-        let p = ray.dir.cross(e2);
+    #[inline(always)]
+    fn on_corners<R: KernelRay>(v: [R::Vec; 3], ray: &R, t_max: R::Scalar) -> Option<R::Scalar> {
+        let e1 = v[1] - v[0];
+        let e2 = v[2] - v[0];
+        let p = ray.dir().cross(e2);
         let det = e1.dot(p);
-        if det == 0.0 {
+        if det == R::Scalar::ZERO {
             return None;
         }
-        let inv_det = 1.0 / det;
-        let s = ray.origin - tri.v[0];
+        let inv_det = R::Scalar::ONE / det;
+        let s = ray.origin() - v[0];
         let u = s.dot(p) * inv_det;
-        if !(0.0..=1.0).contains(&u) {
+        if !(R::Scalar::ZERO..=R::Scalar::ONE).contains(&u) {
             return None;
         }
         let q = s.cross(e1);
-        let v = ray.dir.dot(q) * inv_det;
-        if v < 0.0 || u + v > 1.0 {
+        let w = ray.dir().dot(q) * inv_det;
+        if w < R::Scalar::ZERO || u + w > R::Scalar::ONE {
             return None;
         }
         in_interval(e2.dot(q) * inv_det, ray, t_max)

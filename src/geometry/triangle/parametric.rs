@@ -3,28 +3,29 @@
 //! `gamma >= 0`, `beta + gamma <= 1`. Each unknown is its own determinant ratio (no shared
 //! cross products), which makes it the slowest of the four.
 
-use super::{Ray, Triangle, TriangleKernel, in_interval};
+use super::RealKernel;
+use crate::geometry::real::{KernelRay, Real, RealVec, in_interval};
 
-impl TriangleKernel for Parametric {
+impl RealKernel for Parametric {
     const NAME: &'static str = "parametric";
 
-    #[inline]
-    fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
+    #[inline(always)]
+    fn on_corners<R: KernelRay>(v: [R::Vec; 3], ray: &R, t_max: R::Scalar) -> Option<R::Scalar> {
         // Columns: (a - b), (a - c), d; right-hand side: a - o.
-        let c2 = ray.dir;
-        let c0 = tri.v[0] - tri.v[1];
-        let c1 = tri.v[0] - tri.v[2];
-        let rhs = tri.v[0] - ray.origin;
+        let c2 = ray.dir();
+        let c0 = v[0] - v[1];
+        let c1 = v[0] - v[2];
+        let rhs = v[0] - ray.origin();
         let det = c0.dot(c1.cross(c2));
-        if det == 0.0 {
+        if det == R::Scalar::ZERO {
             return None;
         }
         let beta = rhs.dot(c1.cross(c2)) / det;
-        if beta < 0.0 {
+        if beta < R::Scalar::ZERO {
             return None;
         }
         let gamma = c0.dot(rhs.cross(c2)) / det;
-        if gamma < 0.0 || beta + gamma > 1.0 {
+        if gamma < R::Scalar::ZERO || beta + gamma > R::Scalar::ONE {
             return None;
         }
         in_interval(c0.dot(c1.cross(rhs)) / det, ray, t_max)

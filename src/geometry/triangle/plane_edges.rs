@@ -2,25 +2,27 @@
 //! method): `t = n.(v0 - o) / n.d`, `p = o + t d`, inside when `((v_{i+1} - v_i) x (p - v_i)).n
 //! >= 0` for all three edges.
 
-use super::{Ray, Triangle, TriangleKernel, in_interval};
+use super::RealKernel;
+use crate::geometry::real::{KernelRay, Real, RealVec, in_interval};
 
-impl TriangleKernel for PlaneEdges {
+impl RealKernel for PlaneEdges {
     const NAME: &'static str = "plane-edges";
 
-    #[inline]
-    fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
-        let n = tri.normal_unnormalized();
-        let denom = n.dot(ray.dir);
-        if denom == 0.0 {
+    #[inline(always)]
+    fn on_corners<R: KernelRay>(v: [R::Vec; 3], ray: &R, t_max: R::Scalar) -> Option<R::Scalar> {
+        // The normal of `Triangle::normal_unnormalized`.
+        let n = (v[1] - v[0]).cross(v[2] - v[0]);
+        let denom = n.dot(ray.dir());
+        if denom == R::Scalar::ZERO {
             return None;
         }
-        let t = n.dot(tri.v[0] - ray.origin) / denom;
+        let t = n.dot(v[0] - ray.origin()) / denom;
         let t = in_interval(t, ray, t_max)?;
         let p = ray.at(t);
         for i in 0..3 {
-            let a = tri.v[i];
-            let b = tri.v[(i + 1) % 3];
-            if (b - a).cross(p - a).dot(n) < 0.0 {
+            let a = v[i];
+            let b = v[(i + 1) % 3];
+            if (b - a).cross(p - a).dot(n) < R::Scalar::ZERO {
                 return None;
             }
         }

@@ -6,39 +6,31 @@
 //! the triangles: no leaks. When an edge function is exactly zero it is recomputed in `f64`, as
 //! the paper prescribes, so the sign test is exact for `f32` inputs.
 
-use super::{Ray, Triangle, TriangleKernel, in_interval};
+use super::RealKernel;
+use crate::geometry::real::{KernelRay, Real, in_interval};
 
-impl TriangleKernel for Watertight {
+impl RealKernel for Watertight {
     const NAME: &'static str = "watertight";
 
-    #[inline]
-    fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
-        let s = &ray.shear;
-        let a = tri.v[0] - ray.origin;
-        let b = tri.v[1] - ray.origin;
-        let c = tri.v[2] - ray.origin;
+    #[inline(always)]
+    fn on_corners<R: KernelRay>(v: [R::Vec; 3], ray: &R, t_max: R::Scalar) -> Option<R::Scalar> {
+        let s = ray.shear();
+        let a = v[0] - ray.origin();
+        let b = v[1] - ray.origin();
+        let c = v[2] - ray.origin();
         let ax = a[s.kx] - s.sx * a[s.kz];
         let ay = a[s.ky] - s.sy * a[s.kz];
         let bx = b[s.kx] - s.sx * b[s.kz];
         let by = b[s.ky] - s.sy * b[s.kz];
         let cx = c[s.kx] - s.sx * c[s.kz];
         let cy = c[s.ky] - s.sy * c[s.kz];
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            let (ax, ay, bx, by, cx, cy) = (
-                ax as f64, ay as f64, bx as f64, by as f64, cx as f64, cy as f64,
-            );
-            u = (cx * by - cy * bx) as f32;
-            v = (ax * cy - ay * cx) as f32;
-            w = (bx * ay - by * ax) as f32;
-        }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        let [u, v, w] = edge_functions([ax, ay, bx, by, cx, cy]);
+        let zero = R::Scalar::ZERO;
+        if (u < zero || v < zero || w < zero) && (u > zero || v > zero || w > zero) {
             return None;
         }
         let det = u + v + w;
-        if det == 0.0 {
+        if det == zero {
             return None;
         }
         let az = s.sz * a[s.kz];
@@ -47,6 +39,26 @@ impl TriangleKernel for Watertight {
         let t_scaled = u * az + v * bz + w * cz;
         in_interval(t_scaled / det, ray, t_max)
     }
+}
+
+/// The signed 2D edge functions `[U, V, W]` of the sheared corners `[ax, ay, bx, by, cx, cy]`,
+/// in their precision; when one is exactly zero all three are recomputed in the widest one
+/// (for `f32` corners exact, so the sign is; `f64` corners have nothing wider and get the same
+/// values again).
+#[inline(always)]
+fn edge_functions<S: Real>(sheared: [S; 6]) -> [S; 3] {
+    let uvw = plain_edge_functions(sheared);
+    if uvw.contains(&S::ZERO) {
+        plain_edge_functions(sheared.map(S::widen)).map(S::narrow)
+    } else {
+        uvw
+    }
+}
+
+/// [`edge_functions`] without the recomputation.
+#[inline(always)]
+fn plain_edge_functions<S: Real>([ax, ay, bx, by, cx, cy]: [S; 6]) -> [S; 3] {
+    [cx * by - cy * bx, ax * cy - ay * cx, bx * ay - by * ax]
 }
 
 /// The watertight kernel of Woop, Benthin and Wald (see the module documentation).

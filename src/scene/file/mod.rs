@@ -21,6 +21,7 @@ use schema::{GeneratorEntry, MeshEntry, SceneFile, SphereEntry};
 use shape_schema::ShapeEntry;
 use std::collections::BTreeMap;
 use std::path::Path;
+use toml::Spanned;
 
 /// One table of the file that contributes primitives.
 enum Object<'a> {
@@ -28,6 +29,16 @@ enum Object<'a> {
     Generator(&'a GeneratorEntry),
     Sphere(&'a SphereEntry),
     Shape(&'a ShapeEntry),
+}
+
+/// The entries of one table as objects, each with its byte offset in the file.
+fn at_offsets<'a, T>(
+    table: &'a [Spanned<T>],
+    object: impl Fn(&'a T) -> Object<'a>,
+) -> impl Iterator<Item = (usize, Object<'a>)> {
+    table
+        .iter()
+        .map(move |e| (e.span().start, object(e.get_ref())))
 }
 
 /// Loads a `.toml` scene file. Every error names the file and, for an object, its line.
@@ -44,26 +55,10 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
     let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
 
     let mut objects: Vec<(usize, Object)> = Vec::new();
-    objects.extend(
-        file.meshes
-            .iter()
-            .map(|m| (m.span().start, Object::Mesh(m.get_ref()))),
-    );
-    objects.extend(
-        file.generators
-            .iter()
-            .map(|g| (g.span().start, Object::Generator(g.get_ref()))),
-    );
-    objects.extend(
-        file.spheres
-            .iter()
-            .map(|s| (s.span().start, Object::Sphere(s.get_ref()))),
-    );
-    objects.extend(
-        file.shapes
-            .iter()
-            .map(|s| (s.span().start, Object::Shape(s.get_ref()))),
-    );
+    objects.extend(at_offsets(&file.meshes, Object::Mesh));
+    objects.extend(at_offsets(&file.generators, Object::Generator));
+    objects.extend(at_offsets(&file.spheres, Object::Sphere));
+    objects.extend(at_offsets(&file.shapes, Object::Shape));
     objects.sort_by_key(|(start, _)| *start);
     if objects.is_empty() {
         return Err(bad(

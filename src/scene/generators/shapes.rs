@@ -1,7 +1,7 @@
 //! A seeded field of every primitive kind: triangles, spheres, oriented boxes, convex and
 //! concave polygons, capped cylinders and cones, ellipsoids.
 
-use super::random::{point, unit_vector};
+use super::random::{per_object, point, unit_vector};
 use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon};
 use crate::geometry::{Shape, Sphere, Triangle};
 use crate::rays::SplitMix64;
@@ -16,7 +16,7 @@ use glam::{Mat3A, Vec3A};
 /// (triangles, spheres, shapes), each in generation order.
 pub fn shape_field(name: &str, n: usize, seed: u64) -> Scene {
     let mut rng = SplitMix64::new(seed);
-    let r0 = 0.6 / (n.max(1) as f32).cbrt();
+    let r0 = per_object(0.6, n);
     let mut scene = Scene {
         name: name.to_owned(),
         ..Scene::default()

@@ -13,14 +13,23 @@ fn height_field(k: usize, h: impl Fn(f32, f32) -> f32) -> Vec<Triangle> {
         Vec3A::new(x, h(x, z), z)
     };
     let mut tris = Vec::with_capacity(2 * k * k);
+    push_grid(&mut tris, k, p, true);
+    tris
+}
+
+/// Appends the `k x k` quads of the grid of points `p(i, j)`, `0 <= i, j <= k`, row by row, two
+/// triangles each: with `a, b, c, d = p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)`, the
+/// triangles `a b c` and `a c d`, or `a c b` and `a d c` (the other winding) when `flip`.
+fn push_grid(tris: &mut Vec<Triangle>, k: usize, p: impl Fn(usize, usize) -> Vec3A, flip: bool) {
     for j in 0..k {
         for i in 0..k {
             let (a, b, c, d) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
-            tris.push(Triangle::new(a, c, b));
-            tris.push(Triangle::new(a, d, c));
+            for (u, v) in [(b, c), (c, d)] {
+                let (u, v) = if flip { (v, u) } else { (u, v) };
+                tris.push(Triangle::new(a, u, v));
+            }
         }
     }
-    tris
 }
 
 /// Quads per side so that `2 k^2` is about `n`.
@@ -60,13 +69,7 @@ pub fn room(n: usize) -> Vec<Triangle> {
     ];
     for (o, u, v) in walls {
         let p = |i: usize, j: usize| o + u * (i as f32 * s) + v * (j as f32 * s);
-        for j in 0..k {
-            for i in 0..k {
-                let (a, b, c, d) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
-                tris.push(Triangle::new(a, b, c));
-                tris.push(Triangle::new(a, c, d));
-            }
-        }
+        push_grid(&mut tris, k, p, false);
     }
     tris
 }

@@ -3,18 +3,8 @@
 
 use super::*;
 use crate::accuracy::reference::{self, Reference};
+use crate::geometry::test_support::unit_floats as lcg;
 use glam::Vec3;
-
-/// A deterministic generator of `f32` in `[0, 1)`.
-fn lcg(seed: u64) -> impl FnMut() -> f32 {
-    let mut s = seed;
-    move || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 40) as f32) / (1u64 << 24) as f32
-    }
-}
 
 /// The `f32` `steps` ulps away from `x` (toward +inf for positive `steps`).
 fn ulps(x: f32, steps: i32) -> f32 {

@@ -1,33 +1,33 @@
 //! The stable roots of `|f + t d|^2 = r^2`, the quadratic behind the sphere, the unit sphere of
 //! the ellipsoid and the side of the cylinder (`f`, `d` projected off its axis).
 
-use glam::Vec3A;
+use super::real::{Real, RealVec};
 
-/// Both roots `(lo, hi)` of `|f + t d|^2 = r^2`, or `None` when the line misses (or `d = 0`).
+/// Both roots `(lo, hi)` of `|f + t d|^2 = r^2`, or `None` when the line misses (or `d = 0`),
+/// in the precision of `f` and `d`.
 ///
-/// The form of [`crate::geometry::sphere::intersect_algebraic`] (Haines et al., Ray Tracing Gems
-/// ch. 7): the discriminant as `r^2 - |f - (f.d/d.d) d|^2`, the squared distance of the line
+/// The stable form of Haines et al. (Ray Tracing Gems ch. 7): the discriminant as `r^2 - |f - (f.d/d.d) d|^2`, the squared distance of the line
 /// from the centre subtracted from `r^2`, so there is no cancellation between `b^2` and `4ac`;
 /// the roots as `c/q` and `q/a` with `q = -(b' + sign(b') sqrt(a disc))`, so neither root
 /// subtracts two nearly equal numbers.
 #[inline(always)]
-pub(super) fn ball_roots(f: Vec3A, d: Vec3A, r: f32) -> Option<(f32, f32)> {
+pub fn ball_roots<S: Real, V: RealVec<Scalar = S>>(f: V, d: V, r: S) -> Option<(S, S)> {
     let a = d.dot(d);
-    if a == 0.0 {
+    if a == S::ZERO {
         return None;
     }
     let b = f.dot(d); // half of the usual b
     let c = f.dot(f) - r * r;
     let l = f - d * (b / a);
     let disc = r * r - l.dot(l);
-    if disc < 0.0 {
+    if disc < S::ZERO {
         return None;
     }
     let root = (a * disc).sqrt();
     let q = -(b + root.copysign(b));
-    if q == 0.0 {
+    if q == S::ZERO {
         // b == 0 and disc == 0: tangent at t = 0.
-        return Some((0.0, 0.0));
+        return Some((S::ZERO, S::ZERO));
     }
     let (t0, t1) = (c / q, q / a);
     Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
@@ -36,6 +36,7 @@ pub(super) fn ball_roots(f: Vec3A, d: Vec3A, r: f32) -> Option<(f32, f32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3A;
 
     #[test]
     fn hand_computed_roots() {
