@@ -35,15 +35,24 @@ use super::layout::Layout;
 use crate::geometry::Ray;
 
 /// The walk of one ray through a grid: an iterator of `(linear cell index, exit distance)`.
+///
+/// Each axis is stepped by its own monomorphized code ([`Dda::step_on`]), so that a walk inlined
+/// into a loop keeps its state in registers (an axis chosen at run time would index the state
+/// arrays through memory at every step).
 #[derive(Debug, Clone)]
 pub struct Dda<'a> {
     layout: &'a Layout,
     origin: [f32; 3],
     inv_dir: [f32; 3],
-    cell: [u32; 3],
-    linear: usize,
+    cell: [i32; 3],
+    /// The cell index at which the walk has left the grid on each axis (`-1` or `res`), or the
+    /// current index on an axis that never steps.
+    end: [i32; 3],
     /// `-1`, `0` (never steps on this axis) or `+1`.
     step: [i32; 3],
+    /// `1` on axes stepping up (a cell's exit plane is its upper one), else `0`.
+    exit_plane: [i32; 3],
+    linear: usize,
     /// How `linear` changes when stepping on each axis.
     stride: [isize; 3],
     /// Distance at which the ray crosses the next boundary plane on each axis (`+inf` when the
@@ -66,7 +75,7 @@ impl<'a> Dda<'a> {
     /// the parameter at which the top-level walk entered the cell: when the inner grid's outer
     /// planes are the cell's planes bit for bit, its last exit is the top-level walk's exit from
     /// the cell (both are the smallest crossing of the same outer planes).
-    #[inline]
+    #[inline(always)]
     pub fn starting_at(layout: &'a Layout, ray: &Ray, t: f32) -> Dda<'a> {
         let start = ray.at(t);
         let origin = ray.origin.to_array();
@@ -75,6 +84,8 @@ impl<'a> Dda<'a> {
         let res = layout.res;
         let base = [1isize, res[0] as isize, res[0] as isize * res[1] as isize];
         let mut step = [0i32; 3];
+        let mut end = cell.map(|c| c as i32);
+        let mut exit_plane = [0i32; 3];
         let mut stride = [0isize; 3];
         let mut t_next = [f32::INFINITY; 3];
         for a in 0..3 {
@@ -82,9 +93,12 @@ impl<'a> Dda<'a> {
             if !inv.is_finite() {
                 continue;
             }
-            step[a] = if inv > 0.0 { 1 } else { -1 };
+            let up = inv > 0.0;
+            step[a] = if up { 1 } else { -1 };
+            end[a] = if up { res[a] as i32 } else { -1 };
+            exit_plane[a] = i32::from(up);
             stride[a] = base[a] * step[a] as isize;
-            let plane = layout.planes[a][(cell[a] + u32::from(step[a] > 0)) as usize];
+            let plane = layout.planes[a][(cell[a] + u32::from(up)) as usize];
             t_next[a] = (plane - origin[a]) * inv;
         }
         Dda {
@@ -92,43 +106,52 @@ impl<'a> Dda<'a> {
             origin,
             inv_dir,
             linear: layout.linear(cell),
-            cell,
+            cell: cell.map(|c| c as i32),
+            end,
             step,
+            exit_plane,
             stride,
             t_next,
             done: false,
         }
+    }
+
+    /// Leaves the current cell across its exit plane on axis `A`; returns the exit distance.
+    #[inline(always)]
+    fn step_on<const A: usize>(&mut self) -> f32 {
+        let exit = self.t_next[A];
+        let next = self.cell[A] + self.step[A];
+        if next == self.end[A] {
+            self.done = true;
+        } else {
+            self.cell[A] = next;
+            self.linear = self.linear.wrapping_add_signed(self.stride[A]);
+            let plane = self.layout.planes[A][(next + self.exit_plane[A]) as usize];
+            self.t_next[A] = (plane - self.origin[A]) * self.inv_dir[A];
+        }
+        exit
     }
 }
 
 impl Iterator for Dda<'_> {
     type Item = (usize, f32);
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<(usize, f32)> {
         if self.done {
             return None;
         }
-        let t = self.t_next;
+        let cell = self.linear;
+        let [tx, ty, tz] = self.t_next;
         // The nearest crossing; ties (a ray through an edge or corner) to the lowest axis.
-        let a = if t[0] <= t[1] && t[0] <= t[2] {
-            0
-        } else if t[1] <= t[2] {
-            1
+        let exit = if tx <= ty && tx <= tz {
+            self.step_on::<0>()
+        } else if ty <= tz {
+            self.step_on::<1>()
         } else {
-            2
+            self.step_on::<2>()
         };
-        let out = (self.linear, t[a]);
-        let next = self.cell[a] as i64 + self.step[a] as i64;
-        if self.step[a] == 0 || next < 0 || next >= self.layout.res[a] as i64 {
-            self.done = true;
-        } else {
-            self.cell[a] = next as u32;
-            self.linear = self.linear.wrapping_add_signed(self.stride[a]);
-            let plane = self.layout.planes[a][next as usize + usize::from(self.step[a] > 0)];
-            self.t_next[a] = (plane - self.origin[a]) * self.inv_dir[a];
-        }
-        Some(out)
+        Some((cell, exit))
     }
 }
 
