@@ -139,25 +139,11 @@ pub fn any_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
 /// that is a [`CellWalk`]: the shared mailboxed queries above.
 macro_rules! cell_walk_queries {
     () => {
-        #[inline]
-        fn closest_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
-            &self,
-            geom: &G,
-            ray: &$crate::geometry::Ray,
-            stats: &mut S,
-        ) -> Option<$crate::geometry::Hit> {
-            $crate::index::mailbox::closest_hit_in_cells(self, geom, ray, stats)
-        }
-
-        #[inline]
-        fn any_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
-            &self,
-            geom: &G,
-            ray: &$crate::geometry::Ray,
-            stats: &mut S,
-        ) -> bool {
-            $crate::index::mailbox::any_hit_in_cells(self, geom, ray, stats)
-        }
+        $crate::index::query::ray_queries!(
+            $crate::index::mailbox::closest_hit_in_cells,
+            $crate::index::mailbox::any_hit_in_cells,
+            |index| index
+        );
     };
 }
 pub(crate) use cell_walk_queries;

@@ -79,25 +79,11 @@ pub trait BoxTree<const N: usize>: Rooted {
 /// packet walk's.
 macro_rules! tree_queries {
     () => {
-        #[inline]
-        fn closest_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
-            &self,
-            geom: &G,
-            ray: &$crate::geometry::Ray,
-            stats: &mut S,
-        ) -> Option<$crate::geometry::Hit> {
-            $crate::index::bvh::walk::closest_hit(&self.tree(), geom, ray, stats)
-        }
-
-        #[inline]
-        fn any_hit<G: $crate::scene::Geometry, S: $crate::index::Stats>(
-            &self,
-            geom: &G,
-            ray: &$crate::geometry::Ray,
-            stats: &mut S,
-        ) -> bool {
-            $crate::index::bvh::walk::any_hit(&self.tree(), geom, ray, stats)
-        }
+        $crate::index::query::ray_queries!(
+            $crate::index::bvh::walk::closest_hit,
+            $crate::index::bvh::walk::any_hit,
+            |index| &index.tree()
+        );
 
         fn closest_hits_packet<G: $crate::scene::Geometry, S: $crate::index::Stats>(
             &self,
