@@ -169,21 +169,17 @@ impl Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::test_support::ray;
-
-    fn unit() -> Aabb {
-        Aabb::new(Vec3A::ZERO, Vec3A::ONE)
-    }
+    use crate::geometry::test_support::{ray, unit_box};
 
     #[test]
     fn hand_computed_interval() {
         let r = ray([-1.0, 0.5, 0.5], [1.0, 0.0, 0.0]);
-        let (e, x) = unit().ray_interval(&r, 0.0, f32::INFINITY).unwrap();
+        let (e, x) = unit_box().ray_interval(&r, 0.0, f32::INFINITY).unwrap();
         assert_eq!(e, 1.0);
         assert!((2.0..2.0 + 1e-5).contains(&x));
-        assert!(unit().ray_interval(&r, 0.0, 0.5).is_none());
+        assert!(unit_box().ray_interval(&r, 0.0, 0.5).is_none());
         let miss = ray([-1.0, 1.5, 0.5], [1.0, 0.0, 0.0]);
-        assert!(unit().ray_interval(&miss, 0.0, f32::INFINITY).is_none());
+        assert!(unit_box().ray_interval(&miss, 0.0, f32::INFINITY).is_none());
     }
 
     #[test]
@@ -194,7 +190,7 @@ mod tests {
                     let o = [if dx > 0.0 { -1.0 } else { 2.0 }, 0.5, z];
                     let r = ray(o, [dx, 0.0, dz]);
                     assert!(
-                        unit().ray_interval(&r, 0.0, f32::INFINITY).is_some(),
+                        unit_box().ray_interval(&r, 0.0, f32::INFINITY).is_some(),
                         "z={z} dz={dz:?} dx={dx}"
                     );
                 }
@@ -202,7 +198,7 @@ mod tests {
         }
         // Parallel and outside the slab: miss.
         let r = ray([-1.0, 0.5, 1.5], [1.0, 0.0, -0.0]);
-        assert!(unit().ray_interval(&r, 0.0, f32::INFINITY).is_none());
+        assert!(unit_box().ray_interval(&r, 0.0, f32::INFINITY).is_none());
     }
 
     #[test]
@@ -216,7 +212,7 @@ mod tests {
     #[test]
     fn containing_box_interval_contains_inner_interval() {
         let inner = Aabb::new(Vec3A::new(0.2, 0.3, 0.1), Vec3A::new(0.4, 0.9, 0.7));
-        let outer = inner.union(unit());
+        let outer = inner.union(unit_box());
         let r = ray([-0.7, -0.3, -0.2], [1.0, 0.9, 0.77]);
         let (ie, ix) = inner.ray_interval(&r, 0.0, f32::INFINITY).unwrap();
         let (oe, ox) = outer.ray_interval(&r, 0.0, f32::INFINITY).unwrap();
@@ -225,7 +221,7 @@ mod tests {
 
     #[test]
     fn surface_area_and_empty() {
-        assert_eq!(unit().surface_area(), 6.0);
+        assert_eq!(unit_box().surface_area(), 6.0);
         assert!(Aabb::EMPTY.is_empty());
         assert_eq!(Aabb::EMPTY.surface_area(), 0.0);
         assert_eq!(

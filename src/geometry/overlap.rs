@@ -68,10 +68,7 @@ pub fn sphere_overlaps_box(s: &Sphere, b: &Aabb) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn unit() -> Aabb {
-        Aabb::new(Vec3A::ZERO, Vec3A::ONE)
-    }
+    use crate::geometry::test_support::unit_box;
 
     #[test]
     fn triangle_cases() {
@@ -80,13 +77,13 @@ mod tests {
             Vec3A::new(0.8, 0.2, 0.2),
             Vec3A::new(0.2, 0.8, 0.2),
         );
-        assert!(triangle_overlaps_box(&inside, &unit()));
+        assert!(triangle_overlaps_box(&inside, &unit_box()));
         // Big triangle whose plane cuts the box although no vertex is inside.
         let big = Triangle::from_corners([-10.0, -10.0, 0.5], [10.0, -10.0, 0.5], [0.0, 20.0, 0.5]);
-        assert!(triangle_overlaps_box(&big, &unit()));
+        assert!(triangle_overlaps_box(&big, &unit_box()));
         // Bounding boxes overlap, the triangle does not: it passes the corner diagonally.
         let corner = Triangle::from_corners([1.5, -0.5, 0.5], [2.5, 0.5, 0.5], [1.6, 0.9, 0.5]);
-        assert!(!triangle_overlaps_box(&corner, &unit()));
+        assert!(!triangle_overlaps_box(&corner, &unit_box()));
         let diag = Triangle::from_corners([1.2, -0.5, 0.2], [-0.5, 1.2, 0.2], [2.0, 2.0, 0.2]);
         assert!(!triangle_overlaps_box(
             &diag,
@@ -94,17 +91,17 @@ mod tests {
         ));
         // Touching a face exactly counts (closed boxes).
         let touching = Triangle::from_corners([1.0, 0.2, 0.2], [2.0, 0.2, 0.2], [1.0, 0.8, 0.2]);
-        assert!(triangle_overlaps_box(&touching, &unit()));
+        assert!(triangle_overlaps_box(&touching, &unit_box()));
         // Degenerate (a segment through the box).
         let seg = Triangle::new(Vec3A::splat(-1.0), Vec3A::splat(2.0), Vec3A::splat(2.0));
-        assert!(triangle_overlaps_box(&seg, &unit()));
+        assert!(triangle_overlaps_box(&seg, &unit_box()));
     }
 
     #[test]
     fn sphere_cases() {
         let s = Sphere::new(Vec3A::new(2.0, 0.5, 0.5), 1.0);
-        assert!(sphere_overlaps_box(&s, &unit()));
+        assert!(sphere_overlaps_box(&s, &unit_box()));
         let s = Sphere::new(Vec3A::new(1.8, 1.8, 1.8), 1.0);
-        assert!(!sphere_overlaps_box(&s, &unit()));
+        assert!(!sphere_overlaps_box(&s, &unit_box()));
     }
 }

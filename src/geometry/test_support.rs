@@ -9,6 +9,11 @@ pub fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
     Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap()
 }
 
+/// The box `[0, 1]^3`.
+pub fn unit_box() -> Aabb {
+    Aabb::new(Vec3A::ZERO, Vec3A::ONE)
+}
+
 /// A ray and the answer a kernel must give: `(origin, direction, t_max, expected t)`.
 pub type RayCase = ([f32; 3], [f32; 3], f32, Option<f32>);
 

@@ -82,6 +82,16 @@ fn random_dir(rng: &mut SplitMix64) -> Vec3 {
     Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, w as f32)
 }
 
+/// Rays from `batch` (which appends a few, seeing those made so far) until there are `n` or
+/// more.
+fn at_least(n: usize, mut batch: impl FnMut(&mut Vec<Ray>)) -> Vec<Ray> {
+    let mut rays = Vec::new();
+    while rays.len() < n {
+        batch(&mut rays);
+    }
+    rays
+}
+
 fn ray(o: Vec3, d: Vec3) -> Option<Ray> {
     Ray::infinite(o, d).ok()
 }
@@ -92,18 +102,17 @@ fn axis_parallel(s: &Scene, n: usize) -> Vec<Ray> {
     let grown = Aabb::new(b.min - b.extent() * 0.1, b.max + b.extent() * 0.1);
     let dirs = axis_directions();
     let mut rng = SplitMix64::new(5);
-    let mut rays = Vec::new();
-    while rays.len() < n {
+    at_least(n, |rays| {
         let (i, steps) = random_dyadic(&mut rng, 5);
-        let o = dyadic(&grown, i, steps);
-        let o = if rays.len().is_multiple_of(3) {
-            dyadic(&b, i, steps)
+        // A third of the batches from the bounds themselves.
+        let lattice = if rays.len().is_multiple_of(3) {
+            &b
         } else {
-            o
+            &grown
         };
+        let o = dyadic(lattice, i, steps);
         rays.extend(dirs.iter().filter_map(|&d| ray(o, d)));
-    }
-    rays
+    })
 }
 
 /// Rays aimed at every vertex and edge midpoint from outside, from the centre, and from other
@@ -132,14 +141,12 @@ fn cell_boundaries(s: &Scene, n: usize) -> Vec<Ray> {
     let b = s.bounds();
     let dirs = axis_directions();
     let mut rng = SplitMix64::new(9);
-    let mut rays = Vec::new();
-    while rays.len() < n {
+    at_least(n, |rays| {
         let (i, steps) = random_dyadic(&mut rng, 7);
         let o = dyadic(&b, i, steps);
         rays.extend(ray(o, random_dir(&mut rng)));
         rays.extend(ray(o, dirs[(rng.next_u64() % 24) as usize]));
-    }
-    rays
+    })
 }
 
 /// Rays lying in a split plane: origin on `axis = min + e * i / 2^k`, direction zero (`+0.0`
@@ -147,8 +154,7 @@ fn cell_boundaries(s: &Scene, n: usize) -> Vec<Ray> {
 fn in_split_planes(s: &Scene, n: usize) -> Vec<Ray> {
     let b = s.bounds();
     let mut rng = SplitMix64::new(13);
-    let mut rays = Vec::new();
-    while rays.len() < n {
+    at_least(n, |rays| {
         let axis = (rng.next_u64() % 3) as usize;
         let (mut i, steps) = random_dyadic(&mut rng, 6);
         i[axis] = (rng.next_u64() % (steps as u64 + 1)) as u32;
@@ -164,8 +170,7 @@ fn in_split_planes(s: &Scene, n: usize) -> Vec<Ray> {
             -0.0
         };
         rays.extend(ray(o, d));
-    }
-    rays
+    })
 }
 
 /// Protocol rays (primary and incoherent) of the scene's bounds.

@@ -25,13 +25,13 @@ impl Cone {
     pub fn new(base: Vec3A, apex: Vec3A, radius: f32) -> Result<Cone, ShapeError> {
         let seg = AxialSegment::new(apex, base, radius, ["cone", "cone radius"])?;
         let k = radius / seg.height;
-        let mut shape = Cone {
+        // The base disc's bounds grown by the apex.
+        let disc = padded_bounds(seg.end(), disc_half_extent(seg.axis, seg.radius));
+        Ok(Cone {
             seg,
             k2: k * k,
-            bounds: Aabb::EMPTY,
-        };
-        shape.bounds = shape.compute_bounds();
-        Ok(shape)
+            bounds: disc.union(padded_bounds(seg.start, Vec3A::ZERO)),
+        })
     }
 
     pub fn apex(&self) -> Vec3A {
@@ -45,14 +45,6 @@ impl Cone {
     /// The base disc's bounds grown by the apex.
     pub fn bounds(&self) -> Aabb {
         self.bounds
-    }
-
-    fn compute_bounds(&self) -> Aabb {
-        let b = padded_bounds(
-            self.base(),
-            disc_half_extent(self.seg.axis, self.seg.radius),
-        );
-        b.union(padded_bounds(self.seg.start, Vec3A::ZERO))
     }
 
     /// Outward unit normal: the base's when `p` is nearer the base plane than the side, else

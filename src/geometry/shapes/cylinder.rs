@@ -22,12 +22,10 @@ impl Cylinder {
     /// The cylinder between the centres of its two caps.
     pub fn new(base: Vec3A, top: Vec3A, radius: f32) -> Result<Cylinder, ShapeError> {
         let seg = AxialSegment::new(base, top, radius, ["cylinder", "cylinder radius"])?;
-        let mut shape = Cylinder {
-            seg,
-            bounds: Aabb::EMPTY,
-        };
-        shape.bounds = shape.compute_bounds();
-        Ok(shape)
+        // The union of the two cap discs' bounds.
+        let e = disc_half_extent(seg.axis, seg.radius);
+        let bounds = padded_bounds(seg.start, e).union(padded_bounds(seg.end(), e));
+        Ok(Cylinder { seg, bounds })
     }
 
     pub fn base(&self) -> Vec3A {
@@ -41,12 +39,6 @@ impl Cylinder {
     /// The union of the two cap discs' bounds.
     pub fn bounds(&self) -> Aabb {
         self.bounds
-    }
-
-    fn compute_bounds(&self) -> Aabb {
-        let e = disc_half_extent(self.seg.axis, self.seg.radius);
-        let b = padded_bounds(self.seg.start, e);
-        b.union(padded_bounds(self.top(), e))
     }
 
     /// Outward unit normal: the cap's axis direction when `p` is nearer a cap plane than the

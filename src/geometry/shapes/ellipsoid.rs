@@ -26,15 +26,20 @@ impl Ellipsoid {
         let axes = checked_frame(center, radii, axes, names)?;
         let inv = Vec3A::ONE / radii;
         let to_unit = Mat3A::from_cols(axes.row(0) * inv, axes.row(1) * inv, axes.row(2) * inv);
-        let mut shape = Ellipsoid {
+        // Half-extent `sqrt(sum_j (axes_ij radii_j)^2)` on world axis `i`.
+        let m = Mat3A::from_cols(
+            axes.x_axis * radii.x,
+            axes.y_axis * radii.y,
+            axes.z_axis * radii.z,
+        );
+        let half = Vec3A::new(m.row(0).length(), m.row(1).length(), m.row(2).length());
+        Ok(Ellipsoid {
             center,
             radii,
             axes,
             to_unit,
-            bounds: Aabb::EMPTY,
-        };
-        shape.bounds = shape.compute_bounds();
-        Ok(shape)
+            bounds: padded_bounds(center, half),
+        })
     }
 
     pub fn center(&self) -> Vec3A {
@@ -52,16 +57,6 @@ impl Ellipsoid {
     /// Tight bounds: half-extent `sqrt(sum_j (axes_ij radii_j)^2)` on world axis `i`.
     pub fn bounds(&self) -> Aabb {
         self.bounds
-    }
-
-    fn compute_bounds(&self) -> Aabb {
-        let m = Mat3A::from_cols(
-            self.axes.x_axis * self.radii.x,
-            self.axes.y_axis * self.radii.y,
-            self.axes.z_axis * self.radii.z,
-        );
-        let half = Vec3A::new(m.row(0).length(), m.row(1).length(), m.row(2).length());
-        padded_bounds(self.center, half)
     }
 
     /// Outward unit normal, the gradient `axes * (l / radii^2)` of the implicit function.

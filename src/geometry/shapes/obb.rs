@@ -27,15 +27,13 @@ impl Obb {
     pub fn new(center: Vec3A, half_extents: Vec3A, axes: Mat3A) -> Result<Obb, ShapeError> {
         let names = ["box center", "box half-extent", "box axes"];
         let axes = checked_frame(center, half_extents, axes, names)?;
-        let mut shape = Obb {
+        Ok(Obb {
             center,
             half: half_extents,
             axes,
             to_local: axes.transpose(),
-            bounds: Aabb::EMPTY,
-        };
-        shape.bounds = shape.compute_bounds();
-        Ok(shape)
+            bounds: padded_bounds(center, abs(axes) * half_extents),
+        })
     }
 
     pub fn center(&self) -> Vec3A {
@@ -53,10 +51,6 @@ impl Obb {
     /// World half-extent per axis: `sum_j |axes_ij| half_j`.
     pub fn bounds(&self) -> Aabb {
         self.bounds
-    }
-
-    fn compute_bounds(&self) -> Aabb {
-        padded_bounds(self.center, abs(self.axes) * self.half)
     }
 
     /// The ray's origin and direction in the box frame (`t` is unchanged: a rotation is linear).

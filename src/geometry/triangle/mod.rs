@@ -117,7 +117,7 @@ pub trait RealKernel: Copy + Default + Send + Sync + 'static {
 
 impl<K: RealKernel> TriangleKernel for K {
     const NAME: &'static str = <K as RealKernel>::NAME;
-    #[inline(always)]
+    #[inline]
     fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
         K::intersect_in(tri, ray, t_max)
     }

@@ -139,18 +139,16 @@ impl ShapeEntry {
 #[cfg(test)]
 mod tests {
     use crate::geometry::{Ray, Shape};
-    use crate::scene::file::load_scene_file;
-    use crate::scene::{Material, Scene, SceneError};
+    use crate::scene::Material;
+    use crate::scene::file::tests::load;
     use glam::{Vec3, Vec3A};
 
-    fn load(toml: &str) -> Result<Scene, SceneError> {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("scene.toml");
-        std::fs::write(&path, toml).unwrap();
-        load_scene_file(&path)
-    }
-
+    /// One shape of every kind (the box by the material name, the cone with its own), a sphere
+    /// and the shapes generator (by name).
     const ALL_KINDS: &str = r#"
+[material.gold]
+color = [1, 0.8, 0.1]
+specular = 0.9
 [[shape]]
 kind = "box"
 center = [1, 0, 0]
@@ -158,6 +156,7 @@ half_extents = [1, 1, 1]
 scale = [2, 3, 4]
 rotate = { axis = [0, 0, 1], degrees = 90 }
 translate = [0, 0, 1]
+material = "gold"
 [[sphere]]
 center = [0, 0, 9]
 radius = 1
@@ -179,6 +178,7 @@ kind = "cone"
 base = [0, 0, 0]
 apex = [0, 1, 0]
 radius = 0.5
+material = { color = [0, 0, 1], emission = [0.2, 0.2, 0.2] }
 [[shape]]
 kind = "ellipsoid"
 center = [0, 0, 0]
@@ -188,6 +188,7 @@ scale = [1, 1, 2]
 name = "shapes"
 n = 16
 translate = [10, 0, 0]
+material = "gold"
 "#;
 
     #[test]
@@ -230,43 +231,14 @@ translate = [10, 0, 0]
 
     #[test]
     fn shapes_take_materials_by_name_or_inline() {
-        let s = load(
-            r#"
-[material.gold]
-color = [1, 0.8, 0.1]
-specular = 0.9
-[[sphere]]
-center = [0, 0, 9]
-radius = 1
-[[shape]]
-kind = "box"
-center = [0, 0, 0]
-half_extents = [1, 1, 1]
-material = "gold"
-[[shape]]
-kind = "ellipsoid"
-center = [0, 0, 3]
-radii = [1, 2, 3]
-[[shape]]
-kind = "cone"
-base = [0, 0, 0]
-apex = [0, 1, 0]
-radius = 0.5
-material = { color = [0, 0, 1], emission = [0.2, 0.2, 0.2] }
-[[generator]]
-name = "shapes"
-n = 16
-material = "gold"
-"#,
-        )
-        .unwrap();
+        let s = load(ALL_KINDS).unwrap();
         let gold = Material {
             color: glam::Vec3::new(1.0, 0.8, 0.1),
             specular: 0.9,
             ..Material::DEFAULT
         };
         // Ids: the generator's triangles, the sphere, the generator's spheres, then the shapes
-        // in file order.
+        // in file order (box, polygons, cylinder, cone, ellipsoid) and the generator's.
         let first_shape = (s.triangles.len() + s.spheres.len()) as u32;
         let sphere = s.triangles.len() as u32;
         assert_eq!(
@@ -277,11 +249,11 @@ material = "gold"
         assert_eq!(*s.material(0), gold, "the generator's triangles");
         assert_eq!(*s.material(first_shape), gold);
         assert_eq!(*s.material(first_shape + 1), Material::DEFAULT);
-        let cone = s.material(first_shape + 2);
+        let cone = s.material(first_shape + 4);
         assert_eq!(cone.color, glam::Vec3::Z);
         assert_eq!(cone.emission, glam::Vec3::splat(0.2));
-        // The generator's shapes (after the three tables) take its material.
-        assert!(s.shapes.len() > 3);
+        // The generator's shapes (after the six of the file) take its material.
+        assert!(s.shapes.len() > 6);
         assert_eq!(*s.material(s.len() as u32 - 1), gold);
         // An undefined name is an error naming the table.
         let e = load("[[shape]]\nkind = \"box\"\ncenter = [0,0,0]\nhalf_extents = [1,1,1]\nmaterial = \"tin\"\n")

@@ -16,7 +16,8 @@ fn scene_dir(toml: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     (dir, path)
 }
 
-fn load(toml: &str) -> Result<Scene, SceneError> {
+/// [`load_scene_file`] on `toml` in a [`scene_dir`].
+pub(super) fn load(toml: &str) -> Result<Scene, SceneError> {
     let (_dir, path) = scene_dir(toml);
     load_scene_file(&path)
 }

@@ -114,22 +114,15 @@ pub fn portable(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
 mod tests {
     use super::*;
     use crate::geometry::Triangle;
+    use crate::geometry::test_support::unit_floats;
     use crate::geometry::triangle::Exact;
     use crate::geometry::triangle::lanes::scalar_lanes;
     use glam::{Vec3, Vec3A};
 
-    /// xorshift, so the test needs no seed plumbing.
-    struct Rng(u64);
-    impl Rng {
-        fn unit(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn point(&mut self, scale: f32) -> Vec3A {
-            Vec3A::new(self.unit(), self.unit(), self.unit()) * scale - scale / 2.0
-        }
+    /// Points uniform in the cube `[-scale / 2, scale / 2]^3`, from a fixed seed.
+    fn points(seed: u64) -> impl FnMut(f32) -> Vec3A {
+        let mut unit = unit_floats(seed);
+        move |scale| Vec3A::new(unit(), unit(), unit()) * scale - scale / 2.0
     }
 
     /// Decided lanes equal the scalar kernel bit for bit, on random triangles and rays aimed at
@@ -137,15 +130,14 @@ mod tests {
     /// far from the triangles too; both outcomes and both paths occur.
     #[test]
     fn decided_lanes_equal_the_scalar_kernel() {
-        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut point = points(0x1234_5678_9abc_def1);
         let (mut hits, mut misses, mut undecided) = (0, 0, 0);
         for round in 0..40_000 {
             let scale = [1.0, 1e3, 1e-3][round % 3];
-            let tris: [Triangle; 4] = std::array::from_fn(|_| {
-                Triangle::new(rng.point(scale), rng.point(scale), rng.point(scale))
-            });
+            let tris: [Triangle; 4] =
+                std::array::from_fn(|_| Triangle::new(point(scale), point(scale), point(scale)));
             let lanes = TriangleLanes::new(&tris[..1 + round % 4]);
-            let o = rng.point(scale * 8.0);
+            let o = point(scale * 8.0);
             let target = match round % 5 {
                 0 => tris[0].v[0],
                 1 => (tris[0].v[1] + tris[0].v[2]) * 0.5,
@@ -177,7 +169,7 @@ mod tests {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     #[test]
     fn the_avx_pass_equals_the_portable_form() {
-        let mut rng = Rng(0x0bad_cafe_f00d_d00d);
+        let mut point = points(0x0bad_cafe_f00d_d00d);
         let mut seen = LaneHits {
             hit: 0,
             scalar: 0,
@@ -185,14 +177,13 @@ mod tests {
         };
         for round in 0..40_000 {
             let scale = [1.0, 1e3, 1e-3, 1e6][round % 4];
-            let tris: [Triangle; 4] = std::array::from_fn(|_| {
-                Triangle::new(rng.point(scale), rng.point(scale), rng.point(scale))
-            });
+            let tris: [Triangle; 4] =
+                std::array::from_fn(|_| Triangle::new(point(scale), point(scale), point(scale)));
             let lanes = TriangleLanes::new(&tris[..1 + round % 4]);
             let o = match round % 7 {
                 // In the plane of the first triangle: edge functions near zero.
                 0 => tris[0].v[0] * 2.0 - tris[0].v[1],
-                _ => rng.point(scale * 8.0),
+                _ => point(scale * 8.0),
             };
             let target = match round % 3 {
                 0 => tris[0].v[round % 3],
