@@ -3,9 +3,9 @@
 //! at, the closest hit of one kernel over a scene, and the single-thread timing loop.
 
 use super::kernels_f64::Ray64;
-use super::reference::{self, Reference};
 use super::shapes_f64;
 use crate::geometry::real::{KernelRay, Real};
+use crate::geometry::reference::{self, Reference};
 use crate::geometry::shapes::{cone, cylinder, ellipsoid, obb, polygon};
 use crate::geometry::sphere::{intersect_algebraic, intersect_geometric};
 use crate::geometry::triangle::{

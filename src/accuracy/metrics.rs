@@ -2,8 +2,8 @@
 //! tallies behind the false-miss, false-hit and wrong-primitive rates and the `t` errors.
 
 use super::kernels::{Precision, Prims};
-use super::reference::Reference;
 use crate::geometry::Ray;
+use crate::geometry::reference::Reference;
 
 /// The reference closest hit of a ray over all primitives.
 #[derive(Debug, Clone, Copy)]

@@ -14,12 +14,10 @@
 //! - [`kernels_f64`]: the `f64` mirrors of the kernels; [`dd`]: double-double arithmetic;
 //!   [`families`]: the scenes and ray families.
 
-pub mod dd;
 pub mod families;
 pub mod kernels;
 pub mod kernels_f64;
 pub mod metrics;
-pub mod reference;
 pub mod report;
 pub mod shape_families;
 pub mod shapes_f64;

@@ -14,7 +14,7 @@
 //! rates (as the triangle reference does when an exact difference is not available).
 
 use super::kernels_f64::Ray64;
-use super::reference::Reference;
+use crate::geometry::reference::Reference;
 use crate::geometry::shapes::{Cone, Cylinder, Ellipsoid, Obb, Polygon, obb};
 use crate::geometry::{Ray, Shape};
 use glam::{DMat3, DVec3, Vec3A};

@@ -3,6 +3,7 @@
 mod aabb;
 mod aabb_kernel;
 pub mod clip;
+pub mod dd;
 pub mod float;
 mod hit;
 pub mod overlap;
@@ -11,6 +12,7 @@ pub mod polyhedron;
 pub mod quadratic;
 mod ray;
 pub mod real;
+pub mod reference;
 pub mod shapes;
 pub mod sphere;
 #[cfg(test)]

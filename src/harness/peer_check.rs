@@ -1,7 +1,7 @@
 //! What a peer's disagreement with brute force means. Peers (obvhs, Embree, tinybvh) traverse,
 //! and some test triangles, their own way, so their hits differ from ours on some rays; each such
 //! ray is classified here, the one place that does it, with the exact reference of
-//! [`crate::accuracy::reference`] (exact hit/miss, `t` in double-double):
+//! [`crate::geometry::reference`] (exact hit/miss, `t` in double-double):
 //! - **tie**: both hit, `t` within `1e-6 t` of each other (a shared edge or vertex, or the same
 //!   hit with the peer's own rounding of `t`), or both hit primitives the reference puts at the
 //!   same exact `t`;
@@ -16,7 +16,7 @@
 //! the `t` reported.
 
 use super::timing::Query;
-use crate::accuracy::reference::{self, Reference};
+use crate::geometry::reference::{self, Reference};
 use crate::geometry::{Hit, Ray};
 use crate::scene::Scene;
 

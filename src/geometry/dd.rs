@@ -1,7 +1,8 @@
 //! Double-double arithmetic: a value as an unevaluated sum `hi + lo` of two `f64` with
 //! `|lo| <= ulp(hi)/2`, about 106 significant bits (Dekker 1971; Hida, Li and Bailey's QD).
 //!
-//! Used only for reference values of the accuracy study, never on a hot path. Inputs are `f32`
+//! Used only for the reference values of [`super::reference`] (the accuracy study, the exact
+//! kernel's tests, the peers' check), never on a hot path. Inputs are `f32`
 //! scene and ray values, so differences of two inputs are exact (see [`Dd::diff`]) and every
 //! later operation carries a relative error near `2^-104`.
 
