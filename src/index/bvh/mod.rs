@@ -4,16 +4,19 @@
 //!
 //! - [`params`]: presets and overrides; `build`: the builder (straight into the node array), with the SAH
 //!   split finders in `binned` and `sweep`; `node`: the node layout; `slab`: the two-box slab
-//!   test; `traverse`: the node step; `walk`: the traversal loop and `leaves` the leaf tests
-//!   (both shared with the wide BVH).
+//!   test (over the SIMD registers of `lanes`); `traverse`: the node step; `walk`: the traversal
+//!   loop and `leaves` the leaf tests (both shared with the wide BVH); `packet`: the packet walk
+//!   (shared too) over `packet_slab`, the slab test of one box against a packet of rays.
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids.
 
 mod binned;
 mod build;
+pub(crate) mod lanes;
 pub(crate) mod leaves;
 pub(crate) mod node;
 pub(crate) mod packet;
+pub(crate) mod packet_slab;
 pub mod params;
 mod prim_ref;
 pub(crate) mod slab;

@@ -13,10 +13,12 @@
 //! exact (see [`crate::geometry::Hit`]). `tests` checks the equality on random and degenerate
 //! rays.
 //!
-//! [`hit_boxes4`] does the same for four boxes in structure-of-arrays form (the wide BVH's
-//! nodes), with the same per-lane operations.
+//! [`slab_lanes`] does the same lane by lane over any [`Lanes`] register, with the same
+//! per-lane operations: four or eight boxes against one ray ([`hit_boxes4`], [`hit_boxes8`],
+//! the wide BVH's nodes) or one box against a packet of rays ([`super::packet_slab`]).
 //!
-//! Two variants, chosen once per ray by [`SlabRay::finite`]:
+//! Two variants, chosen once per ray by [`SlabRay::finite`] (once per packet by the packet
+//! walk: `SAFE` when any of its rays needs it, which changes no finite lane):
 //! - `SAFE = false` when every component of `inv_dir` is finite. A product `(p - o) * inv` can
 //!   then not be NaN: `p - o` is finite or, on overflow, infinite, and `inv` is finite and
 //!   nonzero (`1/x` of a finite `x` is never 0), so NaN (`0 * inf` or `inf * 0`) cannot arise
@@ -25,6 +27,7 @@
 //!   the plane of a slab the ray runs parallel to) is replaced by `-inf` for the entry and `+inf`
 //!   for the exit, so that axis puts no constraint on `t`, exactly as in the scalar test.
 
+use super::lanes::{F8, Lanes};
 use super::node::Node;
 use crate::geometry::{Ray, SLAB_FAR_SCALE};
 use glam::{Vec4, Vec4Swizzles};
@@ -58,16 +61,13 @@ impl SlabRay {
 /// Per lane, the distance `(plane - origin) * inv_dir` to one slab plane, as an entry candidate
 /// and an exit candidate: equal, except that with `SAFE` a NaN (origin on the slab plane,
 /// direction 0 on that axis) becomes `-inf` for the entry and `+inf` for the exit ("no
-/// constraint"), as in the scalar test.
+/// constraint"), as in the scalar test. On a lane whose product is not NaN the select is the
+/// identity, bit for bit.
 #[inline(always)]
-fn plane_distances<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, Vec4) {
+fn plane_distances<const SAFE: bool, V: Lanes>(planes: V, origin: V, inv_dir: V) -> (V, V) {
     let t = (planes - origin) * inv_dir;
     if SAFE {
-        let ok = t.cmpeq(t);
-        (
-            Vec4::select(ok, t, Vec4::NEG_INFINITY),
-            Vec4::select(ok, t, Vec4::INFINITY),
-        )
+        (t.nan_to(f32::NEG_INFINITY), t.nan_to(f32::INFINITY))
     } else {
         (t, t)
     }
@@ -77,21 +77,48 @@ fn plane_distances<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) 
 /// duplicated in lanes 2, 3.
 #[inline(always)]
 fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, Vec4) {
-    let (near, far) = plane_distances::<SAFE>(planes, origin, inv_dir);
+    let (near, far) = plane_distances::<SAFE, Vec4>(planes, origin, inv_dir);
     (near.min(near.zwxy()), far.max(far.zwxy()))
 }
 
-/// From the per-axis entries and exits of four boxes: the hit mask (bit `i` for lane `i`) of
-/// the boxes whose interval, with the far distance widened by [`SLAB_FAR_SCALE`] and clipped to
-/// `[ray.t_min, t_max]`, is not empty, and the entries.
+/// From the per-axis entries and exits of one box per lane: the hit mask (bit `i` for lane `i`)
+/// of the lanes whose interval, with the far distance widened by [`SLAB_FAR_SCALE`] and clipped
+/// to `[t_min, t_max]`, is not empty, and the entries.
 #[inline(always)]
-fn clip(near: [Vec4; 3], far: [Vec4; 3], t_min: Vec4, t_max: f32) -> (u32, Vec4) {
+fn clip<V: Lanes>(near: [V; 3], far: [V; 3], t_min: V, t_max: V) -> (u32, V) {
     let enter = near[0].max(near[1]).max(near[2].max(t_min));
     let far = far[0].min(far[1]).min(far[2]);
-    let exit = (far * SLAB_FAR_SCALE)
-        .max(far * (2.0 - SLAB_FAR_SCALE))
-        .min(Vec4::splat(t_max));
-    (enter.cmple(exit).bitmask(), enter)
+    let exit = (far * V::splat(SLAB_FAR_SCALE))
+        .max(far * V::splat(2.0 - SLAB_FAR_SCALE))
+        .min(t_max);
+    (enter.le(exit), enter)
+}
+
+/// The slab test lane by lane: lane `i` tests the box whose planes are lane `i` of `min[axis]`
+/// and `max[axis]` against the ray whose constants are lane `i` of `origin`, `inv_dir`, `t_min`
+/// and `t_max` (either side may be one value splatted over the lanes: many boxes against one
+/// ray, [`hit_boxes4`] and [`hit_boxes8`], or one box against a packet of rays,
+/// [`super::packet_slab`]). Bit `i` of the mask is set when lane `i` hits, lane `i` of the
+/// vector is its entry distance. Every lane performs the same operations in the same order as
+/// [`hit_children`] and so, up to the sign of a zero, as the scalar test.
+#[inline(always)]
+pub(crate) fn slab_lanes<const SAFE: bool, V: Lanes>(
+    min: [V; 3],
+    max: [V; 3],
+    origin: [V; 3],
+    inv_dir: [V; 3],
+    t_min: V,
+    t_max: V,
+) -> (u32, V) {
+    let near_far = |k: usize| {
+        let (ln, lf) = plane_distances::<SAFE, V>(min[k], origin[k], inv_dir[k]);
+        let (hn, hf) = plane_distances::<SAFE, V>(max[k], origin[k], inv_dir[k]);
+        (ln.min(hn), lf.max(hf))
+    };
+    let (nx, fx) = near_far(0);
+    let (ny, fy) = near_far(1);
+    let (nz, fz) = near_far(2);
+    clip([nx, ny, nz], [fx, fy, fz], t_min, t_max)
 }
 
 /// Tests both children's boxes against `[ray.t_min, t_max]`: bit 0 of the mask is set when child
@@ -102,7 +129,7 @@ pub fn hit_children<const SAFE: bool>(node: &Node, ray: &SlabRay, t_max: f32) ->
     let (nx, fx) = axis::<SAFE>(node.x, ray.origin[0], ray.inv_dir[0]);
     let (ny, fy) = axis::<SAFE>(node.y, ray.origin[1], ray.inv_dir[1]);
     let (nz, fz) = axis::<SAFE>(node.z, ray.origin[2], ray.inv_dir[2]);
-    let (mask, enter) = clip([nx, ny, nz], [fx, fy, fz], ray.t_min, t_max);
+    let (mask, enter) = clip([nx, ny, nz], [fx, fy, fz], ray.t_min, Vec4::splat(t_max));
     (mask & 0b11, enter)
 }
 
@@ -118,22 +145,21 @@ pub struct Boxes4 {
 /// hit, lane `i` of the vector is its entry distance.
 #[inline(always)]
 pub fn hit_boxes4<const SAFE: bool>(b: &Boxes4, ray: &SlabRay, t_max: f32) -> (u32, Vec4) {
-    let mut near = [Vec4::ZERO; 3];
-    let mut far = [Vec4::ZERO; 3];
-    for k in 0..3 {
-        let (ln, lf) = plane_distances::<SAFE>(b.min[k], ray.origin[k], ray.inv_dir[k]);
-        let (hn, hf) = plane_distances::<SAFE>(b.max[k], ray.origin[k], ray.inv_dir[k]);
-        near[k] = ln.min(hn);
-        far[k] = lf.max(hf);
-    }
-    clip(near, far, ray.t_min, t_max)
+    slab_lanes::<SAFE, Vec4>(
+        b.min,
+        b.max,
+        ray.origin,
+        ray.inv_dir,
+        ray.t_min,
+        Vec4::splat(t_max),
+    )
 }
 
 /// Tests eight boxes against `[ray.t_min, t_max]`, lane `i` of `min[axis]`/`max[axis]` being
-/// box `i` (two [`Vec4`] per plane: lanes 0..4, then 4..8). Per lane the same operations in the
-/// same order as [`hit_boxes4`]: with AVX one 8-lane pass (`_mm256` min/max/compare have the
-/// SSE instructions' NaN rules, so the lanes equal the four-box test's), otherwise two four-box
-/// passes. Bit `i` of the mask is set when box `i` is hit, `enter[i]` is its entry distance.
+/// box `i` (two [`Vec4`] per plane: lanes 0..4, then 4..8): [`slab_lanes`] over [`F8`] (one
+/// AVX pass, or two four-lane passes without AVX; `_mm256` min/max/compare have the SSE
+/// instructions' NaN rules, so the lanes equal the four-box test's). Bit `i` of the mask is set
+/// when box `i` is hit, `enter[i]` is its entry distance.
 #[inline(always)]
 pub fn hit_boxes8<const SAFE: bool>(
     min: &[[Vec4; 2]; 3],
@@ -141,115 +167,36 @@ pub fn hit_boxes8<const SAFE: bool>(
     ray: &SlabRay,
     t_max: f32,
 ) -> (u32, [f32; 8]) {
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    {
-        avx::hit_boxes8::<SAFE>(min, max, ray, t_max)
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    {
-        let half = |h: usize| Boxes4 {
-            min: [min[0][h], min[1][h], min[2][h]],
-            max: [max[0][h], max[1][h], max[2][h]],
-        };
-        let (m0, e0) = hit_boxes4::<SAFE>(&half(0), ray, t_max);
-        let (m1, e1) = hit_boxes4::<SAFE>(&half(1), ray, t_max);
-        let mut enter = [0.0; 8];
-        enter[..4].copy_from_slice(&e0.to_array());
-        enter[4..].copy_from_slice(&e1.to_array());
-        (m0 | m1 << 4, enter)
-    }
-}
-
-/// The eight-lane pass of [`hit_boxes8`] (AVX): [`plane_distances`], [`hit_boxes4`]'s min/max
-/// per axis and [`clip`], instruction for instruction on 256-bit registers.
-#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-mod avx {
-    use super::{SLAB_FAR_SCALE, SlabRay, Vec4};
-    use std::arch::x86_64::*;
-
-    #[inline(always)]
-    fn load(v: &[Vec4; 2]) -> __m256 {
-        // SAFETY: `[Vec4; 2]` is 8 contiguous f32; AVX is enabled at compile time.
-        unsafe { _mm256_loadu_ps(v.as_ptr().cast::<f32>()) }
-    }
-
-    #[inline(always)]
-    fn distances<const SAFE: bool>(planes: __m256, origin: f32, inv: f32) -> (__m256, __m256) {
-        // SAFETY: AVX is enabled at compile time (the enclosing module's cfg).
-        unsafe {
-            let t = _mm256_mul_ps(
-                _mm256_sub_ps(planes, _mm256_set1_ps(origin)),
-                _mm256_set1_ps(inv),
-            );
-            if SAFE {
-                let ok = _mm256_cmp_ps::<_CMP_EQ_OQ>(t, t);
-                (
-                    _mm256_blendv_ps(_mm256_set1_ps(f32::NEG_INFINITY), t, ok),
-                    _mm256_blendv_ps(_mm256_set1_ps(f32::INFINITY), t, ok),
-                )
-            } else {
-                (t, t)
-            }
-        }
-    }
-
-    #[inline(always)]
-    pub fn hit_boxes8<const SAFE: bool>(
-        min: &[[Vec4; 2]; 3],
-        max: &[[Vec4; 2]; 3],
-        ray: &SlabRay,
-        t_max: f32,
-    ) -> (u32, [f32; 8]) {
-        // SAFETY: AVX is enabled at compile time (the enclosing module's cfg).
-        unsafe {
-            let mut near = [_mm256_setzero_ps(); 3];
-            let mut far = [_mm256_setzero_ps(); 3];
-            for k in 0..3 {
-                let (o, i) = (ray.origin[k].x, ray.inv_dir[k].x);
-                let (ln, lf) = distances::<SAFE>(load(&min[k]), o, i);
-                let (hn, hf) = distances::<SAFE>(load(&max[k]), o, i);
-                near[k] = _mm256_min_ps(ln, hn);
-                far[k] = _mm256_max_ps(lf, hf);
-            }
-            let t_min = _mm256_set1_ps(ray.t_min.x);
-            let enter = _mm256_max_ps(
-                _mm256_max_ps(near[0], near[1]),
-                _mm256_max_ps(near[2], t_min),
-            );
-            let far = _mm256_min_ps(_mm256_min_ps(far[0], far[1]), far[2]);
-            let exit = _mm256_min_ps(
-                _mm256_max_ps(
-                    _mm256_mul_ps(far, _mm256_set1_ps(SLAB_FAR_SCALE)),
-                    _mm256_mul_ps(far, _mm256_set1_ps(2.0 - SLAB_FAR_SCALE)),
-                ),
-                _mm256_set1_ps(t_max),
-            );
-            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(enter, exit)) as u32;
-            let mut out = [0.0f32; 8];
-            _mm256_storeu_ps(out.as_mut_ptr(), enter);
-            (mask, out)
-        }
-    }
+    let ray8 = |v: &[Vec4; 3]| v.map(|l| F8::splat(l.x));
+    let (mask, enter) = slab_lanes::<SAFE, F8>(
+        min.each_ref().map(F8::from_halves),
+        max.each_ref().map(F8::from_halves),
+        ray8(&ray.origin),
+        ray8(&ray.inv_dir),
+        F8::splat(ray.t_min.x),
+        F8::splat(t_max),
+    );
+    (mask, enter.to_lanes())
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::geometry::Aabb;
     use crate::index::bvh::node::Child;
     use glam::{Vec3, Vec3A};
 
     /// A small deterministic generator (xorshift), so the test needs no seed plumbing.
-    struct Rng(u64);
+    pub(crate) struct Rng(pub u64);
     impl Rng {
-        fn next(&mut self) -> u64 {
+        pub fn next(&mut self) -> u64 {
             self.0 ^= self.0 << 13;
             self.0 ^= self.0 >> 7;
             self.0 ^= self.0 << 17;
             self.0
         }
         /// One of a few grid values (so origins land on box planes) or a random float.
-        fn coord(&mut self) -> f32 {
+        pub fn coord(&mut self) -> f32 {
             let r = self.next();
             match r % 4 {
                 0 => [-1.0, 0.0, 0.5, 1.0, 2.0][(r >> 8) as usize % 5],
@@ -257,7 +204,7 @@ mod tests {
             }
         }
         /// A direction component: often +0, -0 or a denormal, else random.
-        fn dir(&mut self) -> f32 {
+        pub fn dir(&mut self) -> f32 {
             let r = self.next();
             match r % 8 {
                 0 => 0.0,
@@ -266,7 +213,7 @@ mod tests {
                 _ => self.coord(),
             }
         }
-        fn aabb(&mut self) -> Aabb {
+        pub fn aabb(&mut self) -> Aabb {
             let p = Vec3A::new(self.coord(), self.coord(), self.coord());
             let q = Vec3A::new(self.coord(), self.coord(), self.coord());
             Aabb::new(p.min(q), p.max(q))

@@ -1,19 +1,35 @@
 //! The wide trees' side of the packet walk shared with the binary BVH
-//! ([`crate::index::bvh::packet`]): one ray's test of a node's children is the single-ray
-//! step's [`super::node::WideNode::hit`], and the walk does the rest.
+//! ([`crate::index::bvh::packet`]): one packet slab pass per existing child
+//! ([`crate::index::bvh::packet_slab::hit_box`], every lane exactly its ray's single-ray test
+//! of that child), and the walk does the rest.
 //!
 //! Box tests are counted as the single-ray step counts them, one per child
 //! ([`super::node::WideNode::valid`]).
 
 use super::traverse::{STACK, Tree};
+use crate::index::bvh::lanes::Lanes;
 use crate::index::bvh::node::Child;
 use crate::index::bvh::packet::PacketTree;
-use crate::index::bvh::slab::SlabRay;
+use crate::index::bvh::packet_slab::{PacketRays, hit_box};
 
 impl<const C: usize> PacketTree<8, STACK> for Tree<'_, C> {
     #[inline(always)]
-    fn hit<const SAFE: bool>(&self, node: u32, ray: &SlabRay, t_max: f32) -> (u32, [f32; 8]) {
-        self.nodes[node as usize].hit::<SAFE>(ray, t_max)
+    fn hit<const SAFE: bool, V: Lanes>(
+        &self,
+        node: u32,
+        rays: &PacketRays<V>,
+        t_max: V,
+    ) -> ([u32; 8], [V; 8]) {
+        let n = &self.nodes[node as usize];
+        let mut masks = [0; 8];
+        let mut entries = [t_max; 8];
+        for i in 0..n.width() {
+            let (chunk, lane) = (i / 4, i % 4);
+            let min = [0, 1, 2].map(|k| n.min[k][chunk][lane]);
+            let max = [0, 1, 2].map(|k| n.max[k][chunk][lane]);
+            (masks[i], entries[i]) = hit_box::<SAFE, V>(min, max, rays, t_max);
+        }
+        (masks, entries)
     }
 
     #[inline(always)]
