@@ -1,6 +1,6 @@
 //! Rays with everything the kernels and slab tests precompute once per ray.
 
-use super::real::{KernelRay, Real, RealVec};
+use super::real::{KernelRay, Shear};
 use glam::{Vec3, Vec3A};
 use thiserror::Error;
 
@@ -18,20 +18,6 @@ pub enum RayError {
         "ray interval [{0}, {1}] is invalid: t_min must be finite and not NaN, t_max must not be NaN, and t_min <= t_max"
     )]
     BadInterval(f32, f32),
-}
-
-/// Per-ray constants of the watertight triangle test (Woop, Benthin and Wald 2013): the axis
-/// `kz` on which the direction is largest, the two others `kx`, `ky` (swapped when `dir[kz] < 0`
-/// to keep the winding), and the shear `sx = dir[kx]/dir[kz]`, `sy = dir[ky]/dir[kz]`,
-/// `sz = 1/dir[kz]`, in the precision `S` of the kernel (`f32` on the hot path).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Shear<S = f32> {
-    pub kx: usize,
-    pub ky: usize,
-    pub kz: usize,
-    pub sx: S,
-    pub sy: S,
-    pub sz: S,
 }
 
 /// A ray `origin + t * dir` for `t` in the closed interval `[t_min, t_max]`.
@@ -131,21 +117,6 @@ impl Shear {
             std::mem::swap(&mut kx, &mut ky);
         }
         Shear::with_axes([kx, ky, kz], dir)
-    }
-}
-
-impl<S: Real> Shear<S> {
-    /// The shear of `dir` on the axes `[kx, ky, kz]` (chosen by the `f32` ray), computed in the
-    /// precision of `dir`.
-    pub fn with_axes<V: RealVec<Scalar = S>>([kx, ky, kz]: [usize; 3], dir: V) -> Shear<S> {
-        Shear {
-            kx,
-            ky,
-            kz,
-            sx: dir[kx] / dir[kz],
-            sy: dir[ky] / dir[kz],
-            sz: S::ONE / dir[kz],
-        }
     }
 }
 

@@ -6,7 +6,6 @@
 //! `f64`), so the `f32` instantiation computes exactly what a kernel written for `Vec3A` computes,
 //! bit for bit, and the `f64` one mirrors it line by line.
 
-use super::ray::Shear;
 use glam::{DVec3, Vec3A};
 use std::ops::{Add, Div, Index, Mul, Neg, Sub};
 
@@ -66,6 +65,35 @@ pub trait KernelRay {
     #[inline(always)]
     fn at(&self, t: Self::Scalar) -> Self::Vec {
         self.origin() + self.dir() * t
+    }
+}
+
+/// Per-ray constants of the watertight triangle test (Woop, Benthin and Wald 2013): the axis
+/// `kz` on which the direction is largest, the two others `kx`, `ky` (swapped when `dir[kz] < 0`
+/// to keep the winding), and the shear `sx = dir[kx]/dir[kz]`, `sy = dir[ky]/dir[kz]`,
+/// `sz = 1/dir[kz]`, in the precision `S` of the kernel (`f32` on the hot path).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shear<S = f32> {
+    pub kx: usize,
+    pub ky: usize,
+    pub kz: usize,
+    pub sx: S,
+    pub sy: S,
+    pub sz: S,
+}
+
+impl<S: Real> Shear<S> {
+    /// The shear of `dir` on the axes `[kx, ky, kz]` (chosen by the `f32` ray), computed in the
+    /// precision of `dir`.
+    pub fn with_axes<V: RealVec<Scalar = S>>([kx, ky, kz]: [usize; 3], dir: V) -> Shear<S> {
+        Shear {
+            kx,
+            ky,
+            kz,
+            sx: dir[kx] / dir[kz],
+            sy: dir[ky] / dir[kz],
+            sz: S::ONE / dir[kz],
+        }
     }
 }
 
