@@ -79,3 +79,64 @@ pub fn write_sweep(
     )?;
     Ok(files)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::TriangleKernelKind;
+    use crate::harness::sweep::{SweepError, SweepPoint, SweepSetup, run_sweep};
+    use crate::index::IndexSpec;
+    use crate::scene::generators;
+
+    #[test]
+    fn sweep_rows_agree_and_files_are_written() {
+        let scene = generators::generate("soup", 500, 1).unwrap();
+        let geom = scene.geometry();
+        let rays = crate::rays::incoherent_rays(&scene.bounds(), 300, 42);
+        let setup = SweepSetup {
+            geom: &geom,
+            kernel: TriangleKernelKind::Watertight,
+            rays: &rays,
+            repeats: 1,
+        };
+        let points: Vec<SweepPoint> = [1u32, 4, 9]
+            .iter()
+            .map(|&r| SweepPoint {
+                series: "res".into(),
+                x: r as f64,
+                spec: format!("grid:res=[{r},{r},{r}]").parse().unwrap(),
+            })
+            .chain(std::iter::once(SweepPoint {
+                series: "brute".into(),
+                x: 1.0,
+                spec: IndexSpec::named("brute"),
+            }))
+            .collect();
+        let mut seen = 0;
+        let rows = run_sweep(&setup, &points, |_| seen += 1, |_, _| ()).unwrap();
+        assert_eq!((rows.len(), seen), (4, 4));
+        assert_eq!(rows[2].cells, 729);
+        assert_eq!(rows[3].prim_tests_per_ray, 500.0);
+        assert!(rows[2].prim_tests_per_ray < rows[0].prim_tests_per_ray);
+        assert!(rows.iter().all(|r| r.rays == 300 && r.rays_per_s > 0.0));
+        let dir = tempfile::tempdir().unwrap();
+        let plot = SweepPlot {
+            title: "grid on soup".into(),
+            x_label: "cells per axis".into(),
+            log_x: true,
+            marker: Some((4.0, "heuristic".into())),
+        };
+        let files = write_sweep(dir.path(), "primary", &rows, &plot).unwrap();
+        assert!(files.csv.ends_with("primary.csv"));
+        let csv = std::fs::read_to_string(&files.csv).unwrap();
+        assert!(csv.starts_with("series,index,spec,params,x,cells"));
+        assert_eq!(csv.lines().count(), 5);
+        let svg = std::fs::read_to_string(&files.rays_chart).unwrap();
+        assert!(svg.contains("heuristic") && svg.contains("brute"));
+        assert!(files.build_chart.exists());
+        assert!(matches!(
+            run_sweep(&setup, &[], |_| (), |_, _| ()),
+            Err(SweepError::Empty)
+        ));
+    }
+}
