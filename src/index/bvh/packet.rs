@@ -182,7 +182,7 @@ where
     S: Stats,
 {
     count(active, stats, |s| s.box_tests(tree.boxes(node)));
-    let (mut masks, entries) = match rays.finite() {
+    let (mut masks, entries) = match rays.fast() {
         true => tree.hit::<false, V>(node, rays, t_max),
         false => tree.hit::<true, V>(node, rays, t_max),
     };

@@ -11,9 +11,11 @@
 //! decision and entry equal its single-ray ones bit for bit, and culling with them stays exact
 //! (see [`super::walk`]). `tests` checks it lane by lane.
 //!
-//! `SAFE` is chosen once per packet: `true` when any ray has a non-finite `inv_dir` component.
-//! The NaN select is the identity on every lane whose products are not NaN, so finite rays in
-//! a `SAFE` packet get their `SAFE = false` results (checked in `tests`).
+//! `SAFE` is chosen once per packet: `true` when any ray needs it (a non-finite `inv_dir`
+//! component or `t_min < 0`, [`SlabRay::fast`]). The NaN select is the identity on every lane
+//! whose products are not NaN, and the far distance's widening on either sign decides as the
+//! one-sided one when `t_min >= 0`, so fast rays in a `SAFE` packet get their `SAFE = false`
+//! decisions and entries (checked in `tests`).
 
 use super::lanes::Lanes;
 use super::slab::{SlabRay, slab_lanes};
@@ -26,8 +28,8 @@ pub struct PacketRays<V> {
     origin: [V; 3],
     inv_dir: [V; 3],
     t_min: V,
-    /// Whether every ray may take the `SAFE = false` test ([`SlabRay::finite`]).
-    finite: bool,
+    /// Whether every ray may take the `SAFE = false` test ([`SlabRay::fast`]).
+    fast: bool,
 }
 
 impl<V: Lanes> PacketRays<V> {
@@ -46,14 +48,14 @@ impl<V: Lanes> PacketRays<V> {
             origin: [0, 1, 2].map(|i| lanes(&|r| r.origin[i])),
             inv_dir: [0, 1, 2].map(|i| lanes(&|r| r.inv_dir[i])),
             t_min: lanes(&|r| r.t_min),
-            finite: rays.iter().all(SlabRay::finite),
+            fast: rays.iter().all(SlabRay::fast),
         }
     }
 
     /// Whether the packet may take the `SAFE = false` test.
     #[inline(always)]
-    pub fn finite(&self) -> bool {
-        self.finite
+    pub fn fast(&self) -> bool {
+        self.fast
     }
 }
 
@@ -82,17 +84,16 @@ mod tests {
     use super::*;
     use crate::geometry::Aabb;
     use crate::index::bvh::lanes::F8;
+    use crate::index::bvh::slab::hit_near_far;
     use crate::index::bvh::slab::tests::Rng;
-    use crate::index::bvh::slab::{Boxes4, hit_boxes4};
+    use crate::index::bvh::slab::tests::near_far_lanes;
     use glam::{Vec3, Vec4};
 
-    /// The single-ray four-box test with `b` in every lane: lane 0's decision and entry.
+    /// The wide nodes' single-ray test of `b`: its decision and entry.
     fn single<const SAFE: bool>(b: &Aabb, ray: &Ray, t_max: f32) -> Option<u32> {
-        let boxes = Boxes4 {
-            min: [0, 1, 2].map(|k| Vec4::splat(b.min[k])),
-            max: [0, 1, 2].map(|k| Vec4::splat(b.max[k])),
-        };
-        let (mask, enter) = hit_boxes4::<SAFE>(&boxes, &SlabRay::new(ray), t_max);
+        let sr = SlabRay::new(ray);
+        let (near, far) = near_far_lanes::<Vec4>(&[*b], &sr);
+        let (mask, enter) = hit_near_far::<SAFE, Vec4>(near, far, &sr, t_max);
         (mask & 1 == 1).then_some(enter.x.to_bits())
     }
 
@@ -102,7 +103,11 @@ mod tests {
         loop {
             let o = Vec3::new(rng.coord(), rng.coord(), rng.coord());
             let d = Vec3::new(rng.dir(), rng.dir(), rng.dir());
-            if let Ok(r) = Ray::new(o, d, rng.coord().min(0.0), f32::INFINITY) {
+            let t_min = match rng.next() % 3 {
+                0 => rng.coord().min(0.0),
+                _ => rng.coord().abs(),
+            };
+            if let Ok(r) = Ray::new(o, d, t_min, f32::INFINITY) {
                 let t_max = match rng.next() % 3 {
                     0 => f32::INFINITY,
                     1 => 0.0,
@@ -113,19 +118,19 @@ mod tests {
         }
     }
 
-    /// Packets of `V::WIDTH` random rays (some packets all finite, some mixed) against random
+    /// Packets of `V::WIDTH` random rays (some packets all fast, some mixed) against random
     /// boxes: every lane's decision and entry bits equal its single-ray test's, and its scalar
-    /// test's entry by value; finite lanes of `SAFE` packets equal their `SAFE = false` results.
+    /// test's entry by value; fast lanes of `SAFE` packets equal their `SAFE = false` results.
     fn packet_equals_single_ray_tests<V: Lanes>(seed: u64) {
         let mut rng = Rng(seed);
-        let (mut hits, mut mixed, mut finite) = (0, 0, 0);
+        let (mut hits, mut mixed, mut fast_lanes) = (0, 0, 0);
         for _ in 0..40_000 {
             let b = rng.aabb();
             let mut rays = Vec::new();
-            let all_finite = rng.next().is_multiple_of(2);
+            let all_fast = rng.next().is_multiple_of(2);
             while rays.len() < V::WIDTH {
                 let (r, t) = ray(&mut rng);
-                if !all_finite || SlabRay::finite(&r) {
+                if !all_fast || SlabRay::fast(&r) {
                     rays.push((r, t));
                 }
             }
@@ -139,7 +144,7 @@ mod tests {
             let (b_min, b_max) = (b.min.to_array(), b.max.to_array());
             let (safe_mask, safe_enter) = hit_box::<true, V>(b_min, b_max, &packet, t_max);
             let fast = packet
-                .finite()
+                .fast()
                 .then(|| hit_box::<false, V>(b_min, b_max, &packet, t_max));
             let lane = |(mask, enter): (u32, V), k: usize| {
                 (mask >> k & 1 == 1).then_some(enter.to_lanes()[k].to_bits())
@@ -153,8 +158,8 @@ mod tests {
                 );
                 let scalar = b.ray_entry(r, r.t_min, *t);
                 assert_eq!(want.map(f32::from_bits), scalar, "{r:?} {b:?}");
-                if SlabRay::finite(r) {
-                    finite += 1;
+                if SlabRay::fast(r) {
+                    fast_lanes += 1;
                     assert_eq!(single::<false>(&b, r, *t), want, "{r:?} {b:?}");
                 }
                 if let Some(f) = fast {
@@ -162,10 +167,10 @@ mod tests {
                 }
                 hits += usize::from(want.is_some());
             }
-            mixed += usize::from(!packet.finite());
+            mixed += usize::from(!packet.fast());
         }
         let lanes = 40_000 * V::WIDTH;
-        assert!(hits > lanes / 100 && mixed > 5_000 && finite > lanes / 2);
+        assert!(hits > lanes / 100 && mixed > 5_000 && fast_lanes > lanes / 2);
     }
 
     #[test]
@@ -193,7 +198,7 @@ mod tests {
         }
         rays[7] = Ray::infinite(Vec3::new(-1.0, 0.25, 0.75), Vec3::new(1.0, 0.1, 0.2)).unwrap();
         let packet = PacketRays::<F8>::new(&rays);
-        assert!(!packet.finite());
+        assert!(!packet.fast());
         let inf = F8::splat(f32::INFINITY);
         let (mask, enter) = hit_box::<true, F8>([0.0; 3], [1.0; 3], &packet, inf);
         assert_eq!(mask, 0xff);

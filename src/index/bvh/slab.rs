@@ -14,20 +14,34 @@
 //! rays.
 //!
 //! [`slab_lanes`] does the same lane by lane over any [`Lanes`] register, with the same
-//! per-lane operations: four or eight boxes against one ray ([`hit_boxes4`], [`hit_boxes8`],
-//! the wide BVH's nodes) or one box against a packet of rays ([`super::packet_slab`]).
+//! per-lane operations: one box against a packet of rays ([`super::packet_slab`]).
+//! [`hit_near_far`] tests four or eight boxes against one ray (the wide BVH's nodes) with the
+//! planes chosen by the ray's direction signs (below).
 //!
-//! Two variants, chosen once per ray by [`SlabRay::finite`] (once per packet by the packet
-//! walk: `SAFE` when any of its rays needs it, which changes no finite lane):
-//! - `SAFE = false` when every component of `inv_dir` is finite. A product `(p - o) * inv` can
-//!   then not be NaN: `p - o` is finite or, on overflow, infinite, and `inv` is finite and
-//!   nonzero (`1/x` of a finite `x` is never 0), so NaN (`0 * inf` or `inf * 0`) cannot arise
-//!   from finite boxes and the NaN selects of the scalar test are identities, skipped here.
-//! - `SAFE = true` otherwise (a zero or denormal direction component): a NaN product (origin in
-//!   the plane of a slab the ray runs parallel to) is replaced by `-inf` for the entry and `+inf`
-//!   for the exit, so that axis puts no constraint on `t`, exactly as in the scalar test.
+//! Two variants, chosen once per ray by [`SlabRay::fast`] (once per packet by the packet
+//! walk: `SAFE` when any of its rays needs it, which changes no fast lane's decision or entry):
+//! - `SAFE = false` when every component of `inv_dir` is finite and `t_min >= 0`. A product
+//!   `(p - o) * inv` can then not be NaN: `p - o` is finite or, on overflow, infinite, and `inv`
+//!   is finite and nonzero (`1/x` of a finite `x` is never 0), so NaN (`0 * inf` or `inf * 0`)
+//!   cannot arise from finite boxes and the NaN selects of the scalar test are identities,
+//!   skipped here. And the far distance is widened as `far * s` alone: where `far < 0`, both
+//!   `far * s` and the scalar test's `far * (2 - s)` are negative, below an entry of at least
+//!   `t_min >= 0`, so the box is missed either way.
+//! - `SAFE = true` otherwise (a zero or denormal direction component, or `t_min < 0`): a NaN
+//!   product (origin in the plane of a slab the ray runs parallel to) is replaced by `-inf` for
+//!   the entry and `+inf` for the exit, so that axis puts no constraint on `t`, exactly as in the
+//!   scalar test, and the far distance is widened on either sign.
+//!
+//! **Near and far planes.** Per axis, `min(t_lo, t_hi)` of the two planes' distances is the
+//! distance to the plane the ray meets first: the `min` plane when `inv_dir` is positive (`+0`
+//! and `+inf` included), else the `max` plane, because `(p - o) * inv` rounds monotonically in
+//! `p` (and in the `SAFE` variant's infinite cases the selected plane gives the same `±inf` or
+//! NaN-replacement). [`hit_near_far`] therefore reads each axis's near and far planes by the
+//! ray's direction signs ([`SlabRay::near`]) instead of taking a min and a max, with the same
+//! entries and decisions. A box with `min = +inf` and `max = -inf` on an axis is missed by every
+//! ray (its near distance is `+inf`, its far one `-inf`): the wide nodes' absent children.
 
-use super::lanes::{F8, Lanes};
+use super::lanes::Lanes;
 use super::node::Node;
 use crate::geometry::{Ray, SLAB_FAR_SCALE};
 use glam::{Vec4, Vec4Swizzles};
@@ -38,6 +52,9 @@ pub struct SlabRay {
     origin: [Vec4; 3],
     inv_dir: [Vec4; 3],
     t_min: Vec4,
+    /// Per axis, which plane of a box the ray meets first: `0` for `min` (`inv_dir` positive,
+    /// `+0` and `+inf` included), `1` for `max`.
+    pub near: [usize; 3],
 }
 
 impl SlabRay {
@@ -48,13 +65,15 @@ impl SlabRay {
             origin: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
             inv_dir: [Vec4::splat(i.x), Vec4::splat(i.y), Vec4::splat(i.z)],
             t_min: Vec4::splat(ray.t_min),
+            near: [0, 1, 2].map(|k| usize::from(i[k].is_sign_negative())),
         }
     }
 
-    /// Whether the ray may take the `SAFE = false` variant (every `inv_dir` component finite).
+    /// Whether the ray may take the `SAFE = false` variant (every `inv_dir` component finite,
+    /// `t_min >= 0`).
     #[inline(always)]
-    pub fn finite(ray: &Ray) -> bool {
-        ray.inv_dir.is_finite()
+    pub fn fast(ray: &Ray) -> bool {
+        ray.inv_dir.is_finite() && ray.t_min >= 0.0
     }
 }
 
@@ -83,22 +102,23 @@ fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, V
 
 /// From the per-axis entries and exits of one box per lane: the hit mask (bit `i` for lane `i`)
 /// of the lanes whose interval, with the far distance widened by [`SLAB_FAR_SCALE`] and clipped
-/// to `[t_min, t_max]`, is not empty, and the entries.
+/// to `[t_min, t_max]`, is not empty, and the entries. Without `SAFE` (`t_min >= 0`) the far
+/// distance is widened for `far >= 0` only (see the module doc).
 #[inline(always)]
-fn clip<V: Lanes>(near: [V; 3], far: [V; 3], t_min: V, t_max: V) -> (u32, V) {
+fn clip<const SAFE: bool, V: Lanes>(near: [V; 3], far: [V; 3], t_min: V, t_max: V) -> (u32, V) {
     let enter = near[0].max(near[1]).max(near[2].max(t_min));
     let far = far[0].min(far[1]).min(far[2]);
-    let exit = (far * V::splat(SLAB_FAR_SCALE))
-        .max(far * V::splat(2.0 - SLAB_FAR_SCALE))
-        .min(t_max);
-    (enter.le(exit), enter)
+    let widened = match SAFE {
+        true => (far * V::splat(SLAB_FAR_SCALE)).max(far * V::splat(2.0 - SLAB_FAR_SCALE)),
+        false => far * V::splat(SLAB_FAR_SCALE),
+    };
+    (enter.le(widened.min(t_max)), enter)
 }
 
 /// The slab test lane by lane: lane `i` tests the box whose planes are lane `i` of `min[axis]`
 /// and `max[axis]` against the ray whose constants are lane `i` of `origin`, `inv_dir`, `t_min`
-/// and `t_max` (either side may be one value splatted over the lanes: many boxes against one
-/// ray, [`hit_boxes4`] and [`hit_boxes8`], or one box against a packet of rays,
-/// [`super::packet_slab`]). Bit `i` of the mask is set when lane `i` hits, lane `i` of the
+/// and `t_max` (either side may be one value splatted over the lanes; the packet walk tests one
+/// box against a packet of rays, [`super::packet_slab`]). Bit `i` of the mask is set when lane `i` hits, lane `i` of the
 /// vector is its entry distance. Every lane performs the same operations in the same order as
 /// [`hit_children`] and so, up to the sign of a zero, as the scalar test.
 #[inline(always)]
@@ -118,7 +138,7 @@ pub(crate) fn slab_lanes<const SAFE: bool, V: Lanes>(
     let (nx, fx) = near_far(0);
     let (ny, fy) = near_far(1);
     let (nz, fz) = near_far(2);
-    clip([nx, ny, nz], [fx, fy, fz], t_min, t_max)
+    clip::<SAFE, V>([nx, ny, nz], [fx, fy, fz], t_min, t_max)
 }
 
 /// Tests both children's boxes against `[ray.t_min, t_max]`: bit 0 of the mask is set when child
@@ -129,60 +149,42 @@ pub fn hit_children<const SAFE: bool>(node: &Node, ray: &SlabRay, t_max: f32) ->
     let (nx, fx) = axis::<SAFE>(node.x, ray.origin[0], ray.inv_dir[0]);
     let (ny, fy) = axis::<SAFE>(node.y, ray.origin[1], ray.inv_dir[1]);
     let (nz, fz) = axis::<SAFE>(node.z, ray.origin[2], ray.inv_dir[2]);
-    let (mask, enter) = clip([nx, ny, nz], [fx, fy, fz], ray.t_min, Vec4::splat(t_max));
+    let (mask, enter) =
+        clip::<SAFE, Vec4>([nx, ny, nz], [fx, fy, fz], ray.t_min, Vec4::splat(t_max));
     (mask & 0b11, enter)
 }
 
-/// Four boxes in structure-of-arrays form: lane `i` of `min[axis]` and `max[axis]` is box `i`.
-#[derive(Debug, Clone, Copy)]
-pub struct Boxes4 {
-    pub min: [Vec4; 3],
-    pub max: [Vec4; 3],
-}
-
-/// Tests four boxes against `[ray.t_min, t_max]` with the same arithmetic as
-/// [`hit_children`] (and so as the scalar test): bit `i` of the mask is set when box `i` is
-/// hit, lane `i` of the vector is its entry distance.
+/// Boxes in structure-of-arrays form against `[ray.t_min, t_max]`, each axis's planes read by
+/// the ray's direction signs (see the module doc): lane `i` of `near[axis]` is box `i`'s plane
+/// on `axis` that the ray meets first (`min` or `max` by [`SlabRay::near`]), of `far[axis]` the
+/// other one. The same entries and decisions as [`slab_lanes`] on the `min` and `max` planes,
+/// with one distance per plane and no min/max per axis. Bit `i` of the mask is set when box `i`
+/// is hit, lane `i` of the vector is its entry distance.
 #[inline(always)]
-pub fn hit_boxes4<const SAFE: bool>(b: &Boxes4, ray: &SlabRay, t_max: f32) -> (u32, Vec4) {
-    slab_lanes::<SAFE, Vec4>(
-        b.min,
-        b.max,
-        ray.origin,
-        ray.inv_dir,
-        ray.t_min,
-        Vec4::splat(t_max),
-    )
-}
-
-/// Tests eight boxes against `[ray.t_min, t_max]`, lane `i` of `min[axis]`/`max[axis]` being
-/// box `i` (two [`Vec4`] per plane: lanes 0..4, then 4..8): [`slab_lanes`] over [`F8`] (one
-/// AVX pass, or two four-lane passes without AVX; `_mm256` min/max/compare have the SSE
-/// instructions' NaN rules, so the lanes equal the four-box test's). Bit `i` of the mask is set
-/// when box `i` is hit, `enter[i]` is its entry distance.
-#[inline(always)]
-pub fn hit_boxes8<const SAFE: bool>(
-    min: &[[Vec4; 2]; 3],
-    max: &[[Vec4; 2]; 3],
+pub fn hit_near_far<const SAFE: bool, V: Lanes>(
+    near: [V; 3],
+    far: [V; 3],
     ray: &SlabRay,
     t_max: f32,
-) -> (u32, [f32; 8]) {
-    let ray8 = |v: &[Vec4; 3]| v.map(|l| F8::splat(l.x));
-    let (mask, enter) = slab_lanes::<SAFE, F8>(
-        min.each_ref().map(F8::from_halves),
-        max.each_ref().map(F8::from_halves),
-        ray8(&ray.origin),
-        ray8(&ray.inv_dir),
-        F8::splat(ray.t_min.x),
-        F8::splat(t_max),
-    );
-    (mask, enter.to_lanes())
+) -> (u32, V) {
+    let (o, inv) = (&ray.origin, &ray.inv_dir);
+    let enter =
+        |k: usize| plane_distances::<SAFE, V>(near[k], V::splat(o[k].x), V::splat(inv[k].x)).0;
+    let exit =
+        |k: usize| plane_distances::<SAFE, V>(far[k], V::splat(o[k].x), V::splat(inv[k].x)).1;
+    clip::<SAFE, V>(
+        [enter(0), enter(1), enter(2)],
+        [exit(0), exit(1), exit(2)],
+        V::splat(ray.t_min.x),
+        V::splat(t_max),
+    )
 }
 
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
     use crate::geometry::Aabb;
+    use crate::index::bvh::lanes::F8;
     use crate::index::bvh::node::Child;
     use glam::{Vec3, Vec3A};
 
@@ -250,7 +252,7 @@ pub(crate) mod tests {
             let want = boxes.map(|b| scalar(&b, &ray, t_max));
             // The safe variant must agree on every ray, the fast one on the rays it is chosen for.
             assert_eq!(both::<true>(&node, &ray, t_max), want, "{ray:?} {boxes:?}");
-            if SlabRay::finite(&ray) {
+            if SlabRay::fast(&ray) {
                 assert_eq!(both::<false>(&node, &ray, t_max), want, "{ray:?} {boxes:?}");
             } else {
                 safe_rays += 1;
@@ -261,51 +263,82 @@ pub(crate) mod tests {
         assert!(safe_rays > 10_000 && hits > 10_000, "{safe_rays} {hits}");
     }
 
-    /// The four- and eight-box tests equal the scalar test on the same random and degenerate
-    /// rays (boxes 0..4 through the four-box test, all eight through the eight-box test).
+    /// `boxes` in structure-of-arrays lanes of `V` (one box per lane), each axis's near and far
+    /// planes chosen by the ray's direction signs, as the wide nodes store and read them.
+    pub(crate) fn near_far_lanes<V: Lanes>(boxes: &[Aabb], ray: &SlabRay) -> ([V; 3], [V; 3]) {
+        let lanes = |side: [usize; 3]| {
+            [0, 1, 2].map(|k| {
+                let mut a = [0.0; 8];
+                for (i, b) in boxes.iter().enumerate().take(V::WIDTH) {
+                    a[i] = [b.min, b.max][side[k]][k];
+                }
+                V::load(&a)
+            })
+        };
+        (lanes(ray.near), lanes(ray.near.map(|s| 1 - s)))
+    }
+
+    /// The sign-selected test of the wide nodes ([`hit_near_far`]) equals the scalar test on
+    /// the same random and degenerate rays, four boxes per [`Vec4`] pass and eight per [`F8`]
+    /// pass, and misses empty boxes (`+inf..-inf`, a wide node's absent children).
     #[test]
-    fn four_and_eight_box_tests_equal_the_scalar_slab_test() {
+    fn near_far_tests_of_four_and_eight_boxes_equal_the_scalar_slab_test() {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         let (mut hits, mut safe_rays) = (0, 0);
+        let empty = Aabb::new(Vec3A::INFINITY, Vec3A::NEG_INFINITY);
         for _ in 0..100_000 {
-            let boxes: [Aabb; 8] = std::array::from_fn(|_| rng.aabb());
-            let lanes = |f: fn(&Aabb) -> Vec3A, h: usize| {
-                let p: [Vec3A; 4] = std::array::from_fn(|i| f(&boxes[4 * h + i]));
-                [0, 1, 2].map(|k| Vec4::new(p[0][k], p[1][k], p[2][k], p[3][k]))
-            };
-            let b4 = Boxes4 {
-                min: lanes(|b| b.min, 0),
-                max: lanes(|b| b.max, 0),
-            };
-            let (lo, hi) = (lanes(|b| b.min, 1), lanes(|b| b.max, 1));
-            let min8 = [0, 1, 2].map(|k| [b4.min[k], lo[k]]);
-            let max8 = [0, 1, 2].map(|k| [b4.max[k], hi[k]]);
+            let mut boxes: [Aabb; 8] = std::array::from_fn(|_| rng.aabb());
+            let absent = (rng.next() % 8) as usize;
+            boxes[absent..].fill(empty);
             let o = Vec3::new(rng.coord(), rng.coord(), rng.coord());
             let d = Vec3::new(rng.dir(), rng.dir(), rng.dir());
-            let Ok(ray) = Ray::new(o, d, rng.coord().min(0.0), f32::INFINITY) else {
+            let t_min = match rng.next() % 3 {
+                0 => rng.coord().min(0.0),
+                _ => rng.coord().abs(),
+            };
+            let Ok(ray) = Ray::new(o, d, t_min, f32::INFINITY) else {
                 continue;
             };
             let t_max = if rng.next().is_multiple_of(2) {
                 f32::INFINITY
             } else {
-                rng.coord().abs() * 3.0
+                t_min + rng.coord().abs() * 3.0
             };
-            let want = boxes.map(|b| scalar(&b, &ray, t_max));
-            let four = |(mask, enter): (u32, Vec4)| {
-                [0, 1, 2, 3].map(|i| (mask >> i & 1 == 1).then_some(enter[i]))
-            };
-            let eight = |(mask, enter): (u32, [f32; 8])| {
+            let want = boxes.map(|b| match b == empty {
+                true => None,
+                false => scalar(&b, &ray, t_max),
+            });
+            let sr = SlabRay::new(&ray);
+            let lanes = |(mask, enter): (u32, [f32; 8])| {
                 std::array::from_fn::<_, 8, _>(|i| (mask >> i & 1 == 1).then_some(enter[i]))
             };
-            let sr = SlabRay::new(&ray);
-            let want4 = [want[0], want[1], want[2], want[3]];
-            assert_eq!(four(hit_boxes4::<true>(&b4, &sr, t_max)), want4, "{ray:?}");
-            assert_eq!(eight(hit_boxes8::<true>(&min8, &max8, &sr, t_max)), want);
-            if SlabRay::finite(&ray) {
-                assert_eq!(four(hit_boxes4::<false>(&b4, &sr, t_max)), want4, "{ray:?}");
-                assert_eq!(eight(hit_boxes8::<false>(&min8, &max8, &sr, t_max)), want);
+            let four = |safe: bool, h: usize| {
+                let (near, far) = near_far_lanes::<Vec4>(&boxes[4 * h..], &sr);
+                let (mask, enter) = match safe {
+                    true => hit_near_far::<true, Vec4>(near, far, &sr, t_max),
+                    false => hit_near_far::<false, Vec4>(near, far, &sr, t_max),
+                };
+                lanes((mask, Lanes::to_lanes(enter)))
+            };
+            let eight = |safe: bool| {
+                let (near, far) = near_far_lanes::<F8>(&boxes, &sr);
+                let (mask, enter) = match safe {
+                    true => hit_near_far::<true, F8>(near, far, &sr, t_max),
+                    false => hit_near_far::<false, F8>(near, far, &sr, t_max),
+                };
+                lanes((mask, enter.to_lanes()))
+            };
+            let mut safe_kinds = vec![true];
+            if SlabRay::fast(&ray) {
+                safe_kinds.push(false);
             } else {
                 safe_rays += 1;
+            }
+            for safe in safe_kinds {
+                let halves = [four(safe, 0), four(safe, 1)];
+                assert_eq!(halves[0][..4], want[..4], "{ray:?} {safe}");
+                assert_eq!(halves[1][..4], want[4..], "{ray:?} {safe}");
+                assert_eq!(eight(safe), want, "{ray:?} {safe}");
             }
             hits += want.iter().flatten().count();
         }
@@ -325,7 +358,7 @@ pub(crate) mod tests {
                     ([1.0, -1.0, z], [dz, 1.0, 0.0]),
                 ] {
                     let ray = Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap();
-                    assert!(!SlabRay::finite(&ray));
+                    assert!(!SlabRay::fast(&ray));
                     let got = both::<true>(&node, &ray, f32::INFINITY);
                     assert!(got.iter().all(Option::is_some), "{o:?} {d:?}: {got:?}");
                     assert_eq!(got, [unit, next].map(|b| scalar(&b, &ray, f32::INFINITY)));

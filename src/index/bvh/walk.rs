@@ -11,7 +11,7 @@
 //! can hold no hit that beats or ties the best one. Leaves test their primitives through
 //! [`Geometry::intersect`] or its lane-wise block form (see [`super::leaves`]).
 //!
-//! Each query picks the slab variant once per ray ([`SlabRay::finite`]) and runs a loop
+//! Each query picks the slab variant once per ray ([`SlabRay::fast`]) and runs a loop
 //! monomorphized on it.
 
 use super::leaves::Leaves;
@@ -108,22 +108,33 @@ macro_rules! tree_queries {
 }
 pub(crate) use tree_queries;
 
-/// Asks the cache for every line of `*item` ahead of its use (x86_64; a no-op elsewhere). Reads
-/// nothing and cannot fault, so any address is allowed.
+/// Asks the cache for every line of `*item` ahead of its use (x86_64; a no-op elsewhere): the
+/// lines from the one holding its first byte, as many as a `T` can span (`size / 64` when `T` is
+/// aligned to a line, one more otherwise), a count known at compile time, so the loop unrolls
+/// into straight prefetches. Reads nothing and cannot fault, so any address is allowed.
 #[inline(always)]
 pub fn prefetch<T>(item: *const T) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let first = item as usize & !63;
-        let end = item as usize + size_of::<T>();
-        for line in (first..end).step_by(64) {
-            // SAFETY: prefetching is a hint; it does not access memory architecturally.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(line as *const i8) };
-        }
+    let lines = match align_of::<T>() % 64 {
+        0 => size_of::<T>() / 64,
+        _ => size_of::<T>() / 64 + 1,
+    };
+    let first = item as usize & !63;
+    for i in 0..lines {
+        prefetch_line((first + 64 * i) as *const u8);
     }
+}
+
+/// Asks the cache for the line holding `*byte` (x86_64; a no-op elsewhere). Reads nothing and
+/// cannot fault.
+#[inline(always)]
+pub fn prefetch_line(byte: *const u8) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: prefetching is a hint; it does not access memory architecturally.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(byte.cast::<i8>())
+    };
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = item;
+    let _ = byte;
 }
 
 /// The closest hit in `[ray.t_min, ray.t_max]` (see the module doc).
@@ -138,7 +149,7 @@ pub fn closest_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     tree.top()
         .root_bounds
         .ray_entry(ray, ray.t_min, ray.t_max)?;
-    if SlabRay::finite(ray) {
+    if SlabRay::fast(ray) {
         closest::<false, N, T, G, S>(tree, geom, ray, stats)
     } else {
         closest::<true, N, T, G, S>(tree, geom, ray, stats)
@@ -201,7 +212,7 @@ pub fn any_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     {
         return false;
     }
-    if SlabRay::finite(ray) {
+    if SlabRay::fast(ray) {
         any::<false, N, T, G, S>(tree, geom, ray, stats)
     } else {
         any::<true, N, T, G, S>(tree, geom, ray, stats)

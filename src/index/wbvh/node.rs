@@ -2,17 +2,18 @@
 //!
 //! A node of `C` chunks holds up to `4 * C` children: their boxes in structure-of-arrays form,
 //! per axis the `min` planes of all children in `4 * C` consecutive lanes (likewise `max`), so
-//! one SIMD slab pass tests four (`C = 1`, [`Boxes4`]) or eight (`C = 2`, one AVX pass) boxes,
-//! and their references. Lanes past the children hold NaN planes, which mark them absent
-//! ([`WideNode::valid`]); they are masked out of every test.
+//! one SIMD slab pass tests four (`C = 1`) or eight (`C = 2`, one AVX pass) boxes, and their
+//! references. Lanes past the children hold empty boxes (`+inf..-inf`), which every ray misses
+//! and [`WideNode::valid`] leaves out.
 //!
 //! Size: the references first, then the planes, no other field: `C = 1` is 128 bytes (two cache
 //! lines), `C = 2` 256 bytes (four), aligned to a cache line.
 
 use crate::geometry::Aabb;
+use crate::index::bvh::lanes::{F8, Lanes};
 use crate::index::bvh::node::{Child, Node};
-use crate::index::bvh::slab::{Boxes4, SlabRay, hit_boxes4, hit_boxes8};
-use glam::Vec4;
+use crate::index::bvh::slab::{SlabRay, hit_near_far};
+use glam::{Vec3A, Vec4};
 
 /// Up to `4 * C` children, filling lanes `0..n`.
 #[derive(Debug, Clone, Copy)]
@@ -20,11 +21,10 @@ use glam::Vec4;
 pub struct WideNode<const C: usize> {
     /// Child `4 * chunk + lane`'s reference in `children[chunk][lane]`.
     pub children: [[Child; 4]; C],
-    /// `min[axis][chunk][lane]`: child `4 * chunk + lane`'s lower plane on `axis`; NaN on every
-    /// axis in lanes without a child.
-    pub min: [[Vec4; C]; 3],
-    /// Upper planes, as `min`.
-    pub max: [[Vec4; C]; 3],
+    /// `planes[side][axis][chunk][lane]`: child `4 * chunk + lane`'s lower (`side` 0) or upper
+    /// (`side` 1) plane on `axis`. Lanes without a child hold the empty box `+inf..-inf` on
+    /// every axis, which every ray misses (see [`crate::index::bvh::slab`]).
+    pub planes: [[[Vec4; C]; 3]; 2],
 }
 
 const _: () = assert!(size_of::<WideNode<1>>() == 128 && size_of::<WideNode<2>>() == 256);
@@ -34,27 +34,25 @@ impl<const C: usize> WideNode<C> {
         debug_assert!((2..=4 * C).contains(&kids.len()) || kids.len() == 1);
         let mut n = WideNode {
             children: [[Child::default(); 4]; C],
-            min: [[Vec4::NAN; C]; 3],
-            max: [[Vec4::NAN; C]; 3],
+            planes: [[[Vec4::INFINITY; C]; 3], [[Vec4::NEG_INFINITY; C]; 3]],
         };
         for (i, (b, child)) in kids.iter().enumerate() {
-            debug_assert!(!b.min.x.is_nan(), "a NaN plane would mark child {i} absent");
+            debug_assert!(b.min.cmple(b.max).all(), "child {i}'s box {b:?} is empty");
             let (chunk, lane) = (i / 4, i % 4);
             for k in 0..3 {
-                n.min[k][chunk][lane] = b.min[k];
-                n.max[k][chunk][lane] = b.max[k];
+                n.planes[0][k][chunk][lane] = b.min[k];
+                n.planes[1][k][chunk][lane] = b.max[k];
             }
             n.children[chunk][lane] = *child;
         }
         n
     }
 
-    /// Bit `i` set when child `i` exists (its lower `x` plane is not NaN).
+    /// Bit `i` set when child `i` exists (its box is not empty on `x`).
     #[inline(always)]
     pub fn valid(&self) -> u32 {
         (0..C).fold(0, |m, c| {
-            let x = self.min[0][c];
-            m | x.cmpeq(x).bitmask() << (4 * c)
+            m | self.planes[0][0][c].cmple(self.planes[1][0][c]).bitmask() << (4 * c)
         })
     }
 
@@ -69,27 +67,43 @@ impl<const C: usize> WideNode<C> {
         self.children[i / 4][i % 4]
     }
 
-    /// The slab test of every child against `[ray.t_min, t_max]`: the mask of the hit children
-    /// (bit `i` for child `i`) and the entry distances (`enter[i]`, meaningful where hit).
+    /// Child `i`'s box.
+    pub fn child_box(&self, i: usize) -> Aabb {
+        let (chunk, lane) = (i / 4, i % 4);
+        let side = |s: usize| Vec3A::from_array([0, 1, 2].map(|k| self.planes[s][k][chunk][lane]));
+        Aabb::new(side(0), side(1))
+    }
+
+    /// The slab test of every child against `[ray.t_min, t_max]`, planes read by the ray's
+    /// direction signs ([`hit_near_far`]): the mask of the hit children (bit `i` for child `i`;
+    /// absent children are never hit) and the entry distances (`enter[i]`, meaningful where
+    /// hit).
     #[inline(always)]
     pub fn hit<const SAFE: bool>(&self, ray: &SlabRay, t_max: f32) -> (u32, [f32; 8]) {
-        let (mask, enter) = if C == 2 {
+        if C == 2 {
             // SAFETY: `C == 2`, so both are the same type.
-            let eight =
-                |p: &[[Vec4; C]; 3]| unsafe { &*std::ptr::from_ref(p).cast::<[[Vec4; 2]; 3]>() };
-            hit_boxes8::<SAFE>(eight(&self.min), eight(&self.max), ray, t_max)
+            let p = unsafe { &*std::ptr::from_ref(&self.planes).cast::<[[[Vec4; 2]; 3]; 2]>() };
+            let (near, far) = near_far(p, ray.near, F8::from_halves);
+            let (mask, enter) = hit_near_far::<SAFE, F8>(near, far, ray, t_max);
+            (mask, enter.to_lanes())
         } else {
-            let b = Boxes4 {
-                min: [0, 1, 2].map(|k| self.min[k][0]),
-                max: [0, 1, 2].map(|k| self.max[k][0]),
-            };
-            let (m, e) = hit_boxes4::<SAFE>(&b, ray, t_max);
-            let mut enter = [0.0; 8];
-            enter[..4].copy_from_slice(&e.to_array());
-            (m, enter)
-        };
-        (mask & self.valid(), enter)
+            let (near, far) = near_far(&self.planes, ray.near, |v: &[Vec4; C]| v[0]);
+            let (mask, enter) = hit_near_far::<SAFE, Vec4>(near, far, ray, t_max);
+            (mask, Lanes::to_lanes(enter))
+        }
     }
+}
+
+/// Per axis, the planes a ray meets first (`near[axis]`: 0 for the lower planes, 1 for the
+/// upper) and the others, each loaded by `load`. Written out, with no bounds check (`& 1`) and
+/// no array `map`, so the step stays one straight run of loads.
+#[inline(always)]
+fn near_far<P, V>(p: &[[P; 3]; 2], near: [usize; 3], load: impl Fn(&P) -> V) -> ([V; 3], [V; 3]) {
+    let plane = |k: usize, far: usize| load(&p[(near[k] ^ far) & 1][k]);
+    (
+        [plane(0, 0), plane(1, 0), plane(2, 0)],
+        [plane(0, 1), plane(1, 1), plane(2, 1)],
+    )
 }
 
 /// The wide tree: nodes in depth-first order (the root first), and a reference to the root,

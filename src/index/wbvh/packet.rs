@@ -24,9 +24,8 @@ impl<const C: usize> PacketTree<8, STACK> for Tree<'_, C> {
         let mut masks = [0; 8];
         let mut entries = [t_max; 8];
         for i in 0..n.width() {
-            let (chunk, lane) = (i / 4, i % 4);
-            let min = [0, 1, 2].map(|k| n.min[k][chunk][lane]);
-            let max = [0, 1, 2].map(|k| n.max[k][chunk][lane]);
+            let b = n.child_box(i);
+            let (min, max) = ([0, 1, 2].map(|k| b.min[k]), [0, 1, 2].map(|k| b.max[k]));
             (masks[i], entries[i]) = hit_box::<SAFE, V>(min, max, rays, t_max);
         }
         (masks, entries)

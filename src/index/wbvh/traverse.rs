@@ -1,8 +1,9 @@
 //! The wide tree's node step for the shared traversal loop ([`crate::index::bvh::walk`]).
 //!
-//! Every chunk of four children's boxes is tested in one SIMD slab pass ([`hit_boxes4`], the
-//! binary BVH's arithmetic, so conservative and monotone exactly like the scalar
-//! [`crate::geometry::Aabb::ray_interval`]). Closest hit visits the nearest hit child and
+//! All children's boxes are tested in one SIMD slab pass
+//! ([`crate::index::bvh::slab::hit_near_far`]: each axis's near and far planes read by the ray's
+//! direction signs, with the entries and decisions of the scalar
+//! [`crate::geometry::Aabb::ray_interval`], so conservative and monotone like it). Closest hit visits the nearest hit child and
 //! pushes the others farthest first: one hit child is visited at once, two are ordered by one
 //! comparison, more by an insertion sort of integer keys (entry bits and lane, so items move in
 //! one register and the sort's stores forward to its loads); any-hit pushes all but one.
@@ -19,7 +20,7 @@ use super::node::WideNode;
 use crate::index::Stats;
 use crate::index::bvh::MAX_DEPTH;
 use crate::index::bvh::node::Child;
-use crate::index::bvh::walk::{self, BoxTree, Entry, Step, prefetch};
+use crate::index::bvh::walk::{self, BoxTree, Entry, Step, prefetch, prefetch_line};
 use crate::index::stack::Stack;
 
 /// Stack capacity of the wide trees' traversal.
@@ -29,11 +30,11 @@ pub const STACK: usize = 7 * MAX_DEPTH as usize;
 pub type Tree<'a, const C: usize> = walk::Tree<'a, WideNode<C>>;
 
 impl<const C: usize> Tree<'_, C> {
-    /// Node `index`, its reference line prefetched.
+    /// Node `index`, its reference line (its first) prefetched.
     #[inline(always)]
     fn node(&self, index: u32) -> &WideNode<C> {
         let node = &self.nodes[index as usize];
-        prefetch(&node.children);
+        prefetch_line(std::ptr::from_ref(node).cast());
         node
     }
 
