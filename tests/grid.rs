@@ -141,14 +141,18 @@ fn each_primitive_tested_once_on_a_long_walk() {
     assert_eq!(grid.closest_hit(&g, &r, &mut c), None);
     assert_eq!(c.node_visits, 16, "one visit per cell along x");
     assert_eq!(
-        c.prim_tests, 2,
-        "two triangles stored in all 16 cells, each tested once"
+        c.box_tests,
+        1 + 2,
+        "the grid box, then two triangles stored in all 16 cells, each tested once"
     );
+    // The ray misses both triangles' bounds (z = 2), so the kernel never runs.
+    assert_eq!(c.prim_tests, 0);
 }
 
-/// On the bunny (or a soup), the tests a ray makes equal the distinct primitives of the cells
-/// it visited (the walk up to the cell where it stopped): never more (mailbox), never fewer (no
-/// cell's primitive skipped).
+/// On the bunny (or a soup), the primitives a ray tests (its bounds first, one box test each, the
+/// kernel only when the ray meets them) are the distinct primitives of the cells it visited (the
+/// walk up to the cell where it stopped): never more (mailbox), never fewer (no cell's primitive
+/// skipped).
 #[test]
 fn prim_tests_equal_distinct_primitives_of_visited_cells() {
     let scene = common::bunny().unwrap_or_else(|| generators::generate("soup", 20_000, 2).unwrap());
@@ -156,6 +160,7 @@ fn prim_tests_equal_distinct_primitives_of_visited_cells() {
     let grid = Grid::build(&g, &GridParams::default()).unwrap();
     let rays = agreement_rays(&scene, 2000);
     let mut long_walks = 0;
+    let (mut kernel_calls, mut bounds_tests) = (0, 0);
     for r in &rays {
         let mut c = Counters::default();
         let hit = grid.closest_hit(&g, r, &mut c);
@@ -170,7 +175,10 @@ fn prim_tests_equal_distinct_primitives_of_visited_cells() {
                 }
             }
         }
-        assert_eq!(c.prim_tests, seen.len() as u64, "ray {r:?}");
+        assert_eq!(c.box_tests, 1 + seen.len() as u64, "ray {r:?}");
+        assert!(c.prim_tests <= seen.len() as u64, "ray {r:?}");
+        kernel_calls += c.prim_tests;
+        bounds_tests += c.box_tests - 1;
         assert_eq!(c.node_visits, visits);
         assert!(c.prim_tests <= g.len() as u64);
         if visits > 10 {
@@ -180,6 +188,11 @@ fn prim_tests_equal_distinct_primitives_of_visited_cells() {
     assert!(
         long_walks > 100,
         "the rays should cross many cells ({long_walks})"
+    );
+    // Most primitives of a cell lie off the ray: their bounds spare the kernel.
+    assert!(
+        2 * kernel_calls < bounds_tests,
+        "{kernel_calls} kernel calls, {bounds_tests} bounds tests"
     );
 }
 

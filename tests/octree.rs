@@ -152,22 +152,29 @@ fn rays_through_cell_corners_edges_and_faces_agree() {
     }
 }
 
-/// A few big triangles crossing the whole box: each is stored in many leaves.
+/// Tiny triangles on a 6 x 6 x 6 lattice, which make the tree subdivide.
+const TINY: usize = 216;
+
+/// A few big triangles crossing the whole box, among [`TINY`] tiny ones that make splits pay:
+/// each big one is stored in many leaves.
 fn big_triangles() -> Scene {
     let t = |a: [f32; 3], b: [f32; 3], c: [f32; 3]| {
         Triangle::new(Vec3A::from(a), Vec3A::from(b), Vec3A::from(c))
     };
-    Scene::from_triangles(
-        "big",
-        vec![
-            t([-1.0, -1.0, -1.0], [1.0, -1.0, 1.0], [0.0, 1.0, 0.0]),
-            t([-1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [0.0, -1.0, 0.3]),
-            t([-1.0, 0.0, 1.0], [1.0, 0.2, -1.0], [0.0, 0.1, 1.0]),
-            t([1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [1.0, 1.0, 1.0]),
-            t([-1.0, -1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, 0.0]),
-            t([0.0, -1.0, -1.0], [0.1, 1.0, 1.0], [-0.2, 1.0, -1.0]),
-        ],
-    )
+    let mut tris = vec![
+        t([-1.0, -1.0, -1.0], [1.0, -1.0, 1.0], [0.0, 1.0, 0.0]),
+        t([-1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [0.0, -1.0, 0.3]),
+        t([-1.0, 0.0, 1.0], [1.0, 0.2, -1.0], [0.0, 0.1, 1.0]),
+        t([1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [1.0, 1.0, 1.0]),
+        t([-1.0, -1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, 0.0]),
+        t([0.0, -1.0, -1.0], [0.1, 1.0, 1.0], [-0.2, 1.0, -1.0]),
+    ];
+    for i in 0..TINY {
+        let o = [i % 6, i / 6 % 6, i / 36].map(|k| -0.9 + 0.36 * k as f32);
+        let o = Vec3A::from(o);
+        tris.push(Triangle::new(o, o + Vec3A::X * 0.01, o + Vec3A::Y * 0.01));
+    }
+    Scene::from_triangles("big", tris)
 }
 
 #[test]
@@ -184,9 +191,10 @@ fn each_primitive_is_tested_at_most_once_per_ray() {
             TriangleKernelKind::Watertight,
         )
         .unwrap();
-        // Every primitive sits in many leaves, so without the mailbox rays would retest them.
+        // The big triangles sit in many leaves (the tiny ones in about one each), so without the
+        // mailbox rays would retest them.
         let refs = index.info().prim_refs;
-        assert!(refs > 50 * scene.len(), "{spec}: only {refs} references");
+        assert!(refs > TINY + 20 * 6, "{spec}: only {refs} references");
         let mut hits = vec![None; rays.len()];
         let mut c = vec![Counters::default(); rays.len()];
         index.closest_hits_counted(&rays, &mut hits, &mut c);
@@ -199,8 +207,10 @@ fn each_primitive_is_tested_at_most_once_per_ray() {
                 "{spec}: {counters:?}"
             );
         }
+        // Some rays cross many leaves (the SAH tree cuts the big triangles' cells less finely
+        // than midpoint splits did), meeting the big triangles in several of them.
         let most = c.iter().map(|c| c.node_visits).max().unwrap();
-        assert!(most > 30, "{spec}: rays visit at most {most} nodes");
+        assert!(most > 10, "{spec}: rays visit at most {most} nodes");
     }
 }
 

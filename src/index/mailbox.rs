@@ -85,9 +85,35 @@ pub trait CellWalk {
     );
 }
 
+/// Whether primitive `prim` can hit `ray` within `[ray.t_min, cutoff]`: its bounds' slab test
+/// first (one box test, counted), then the shared kernel ([`Geometry::intersect`], one primitive
+/// test, counted) only for a ray that meets its bounds.
+///
+/// Exact: [`Geometry::intersect`] clamps the kernel's `t` into the slab interval of the
+/// primitive's own bounds and rejects a hit when that interval is empty, computing the interval
+/// with the same [`crate::geometry::Aabb::ray_interval`]; a clamped `t` in `[t_min, cutoff]`
+/// therefore lies in the interval clipped to `[t_min, cutoff]`, which is then not empty. So a
+/// primitive rejected here is one the kernel would reject too. In a grid cell most primitives
+/// are small against the cell and most rays crossing it miss their bounds, so this skips most
+/// kernel calls for the price of a slab test.
+#[inline(always)]
+fn hit_within<G: Geometry, S: Stats>(
+    geom: &G,
+    prim: u32,
+    ray: &Ray,
+    cutoff: f32,
+    stats: &mut S,
+) -> Option<f32> {
+    stats.box_tests(1);
+    geom.bounds(prim).ray_interval(ray, ray.t_min, cutoff)?;
+    stats.prim_test();
+    geom.intersect(prim, ray, cutoff)
+}
+
 /// The closest hit along `walk`: each primitive tested at most once (the mailbox), through the
-/// shared kernel ([`Geometry::intersect`]), ties at equal `t` to the lowest id
-/// ([`ClosestHit::offer`]).
+/// shared kernel ([`Geometry::intersect`], after its bounds: [`hit_within`]), ties at equal `t`
+/// to the lowest id ([`ClosestHit::offer`]). A primitive rejected once stays rejected, because
+/// the best `t` only shrinks.
 #[inline]
 pub fn closest_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
     walk: &W,
@@ -99,11 +125,10 @@ pub fn closest_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
         let mut best = ClosestHit::new(ray.t_max);
         walk.for_each_cell(ray, stats, |prims, stats| {
             for &prim in prims {
-                if mb.first_visit(prim) {
-                    stats.prim_test();
-                    if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                        best.offer(t, prim);
-                    }
+                if mb.first_visit(prim)
+                    && let Some(t) = hit_within(geom, prim, ray, best.t(), stats)
+                {
+                    best.offer(t, prim);
                 }
             }
             best.t()
@@ -124,10 +149,7 @@ pub fn any_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
         let mut found = false;
         walk.for_each_cell(ray, stats, |prims, stats| {
             found = prims.iter().any(|&p| {
-                mb.first_visit(p) && {
-                    stats.prim_test();
-                    geom.intersect(p, ray, ray.t_max).is_some()
-                }
+                mb.first_visit(p) && hit_within(geom, p, ray, ray.t_max, stats).is_some()
             });
             if found { f32::NEG_INFINITY } else { ray.t_max }
         });

@@ -1,7 +1,8 @@
-//! Building the octree: recursive subdivision of a cube around the scene into octants, with
-//! primitives indexed by the shared conservative overlap test, and face ropes threaded on the way
-//! down.
+//! Building the octree: recursive subdivision of a box around the scene into octants (of the
+//! axes [`place`] chooses to split, at the point it chooses), with primitives indexed by the
+//! shared conservative overlap test, and face ropes threaded on the way down.
 
+use super::place::{Split, place};
 use super::tree::{INTERNAL, NO_ROPE, Node, OctreeTree, face, octant_bit};
 use crate::geometry::Aabb;
 use crate::geometry::overlap::OVERLAP_PAD;
@@ -10,20 +11,13 @@ use crate::scene::Geometry;
 use glam::Vec3A;
 use serde::{Deserialize, Serialize};
 
-/// Deepest `max_depth` accepted: cells of 2^-16 of the root side are already close to the
-/// overlap test's padding on large coordinates.
+/// Deepest `max_depth` accepted (the split placement's minimum side,
+/// [`MIN_SIDE_IN_PADS`](super::place::MIN_SIDE_IN_PADS), bounds the depth in practice).
 pub const MAX_DEPTH_LIMIT: usize = 16;
 
 /// Node budget: a build that would need more nodes fails with a typed error instead of
 /// exhausting memory (2^24 nodes is about 1.5 GiB with ropes and content boxes).
 pub const MAX_NODES: usize = 1 << 24;
-
-/// A cell whose smallest side is under this many overlap paddings (the
-/// [`OVERLAP_PAD`](crate::geometry::overlap::OVERLAP_PAD) of its largest coordinate, added on every
-/// side before the overlap test) stays a leaf: its children's padded boxes would be mostly
-/// padding, so they would hold nearly the same primitives as the cell itself, and far from the
-/// origin (a scene at 1e7 pads cells by 100 units) subdividing further only multiplies nodes.
-pub const MIN_SIDE_IN_PADS: f32 = 4.0;
 
 /// Build parameters shared by `octree` and `octree-topdown` (plain serde fields, so parameter
 /// sweeps can set them by name: `octree:max_prims=4,max_depth=8`).
@@ -75,10 +69,10 @@ impl OctreeParams {
     }
 }
 
-/// The root: a cube centred on the scene bounds whose half side exceeds half the largest extent
-/// by 0.1% plus 1e-5 of the largest coordinate, so every primitive lies strictly inside it even
-/// for flat scenes (zero extent on an axis) and after rounding of the centre. A scene that is a
-/// single point at the origin gets a unit half side.
+/// The root: a box centred on the scene bounds whose half side on each axis exceeds half the
+/// extent by 0.1% plus 1e-5 of the largest coordinate, so every primitive lies strictly inside it
+/// even for flat scenes (zero extent on an axis) and after rounding of the centre. A scene that
+/// is a single point at the origin gets a unit half side.
 fn root_cell(bounds: Aabb) -> Result<Aabb, BuildError> {
     if !(bounds.min.is_finite() && bounds.max.is_finite()) || bounds.is_empty() {
         return Err(failed(format!(
@@ -86,13 +80,14 @@ fn root_cell(bounds: Aabb) -> Result<Aabb, BuildError> {
         )));
     }
     let scale = bounds.min.abs().max(bounds.max.abs()).max_element();
-    let half = 0.5 * bounds.extent().max_element() * (1.0 + 1.0e-3) + 1.0e-5 * scale;
-    let half = if half > 0.0 { half } else { 1.0 };
+    let half = 0.5 * bounds.extent() * (1.0 + 1.0e-3) + 1.0e-5 * scale;
+    let half = if scale > 0.0 { half } else { Vec3A::ONE };
     let c = bounds.center();
-    Ok(Aabb::new(c - Vec3A::splat(half), c + Vec3A::splat(half)))
+    Ok(Aabb::new(c - half, c + half))
 }
 
-/// The cell of octant `c` of `cell`, split at `mid`.
+/// The cell of octant `c` of `cell`, split at `mid` (an unsplit axis has `mid` at the cell's
+/// upper corner and no bit in `c`).
 fn octant_cell(cell: &Aabb, mid: Vec3A, c: usize) -> Aabb {
     let mut b = *cell;
     for axis in 0..3 {
@@ -105,19 +100,25 @@ fn octant_cell(cell: &Aabb, mid: Vec3A, c: usize) -> Aabb {
     b
 }
 
-/// Ropes of child `c` from its parent's ropes: a face toward a sibling leads to that sibling,
-/// a face on the parent's boundary to the parent's neighbour (equal or larger).
-fn child_ropes(parent: &[u32; 6], first: u32, c: usize) -> [u32; 6] {
-    let mut r = *parent;
-    for axis in 0..3 {
+/// Ropes of the child of octant `c` of `node` (internal, its ropes set): a face toward a
+/// sibling leads to that sibling, a face on the parent's boundary to the parent's rope (which
+/// covers the parent's whole face, so the child's part of it).
+fn child_ropes(node: &Node, c: usize) -> [u32; 6] {
+    let mut r = node.ropes;
+    for axis in (0..3).filter(|&a| node.split as usize & octant_bit(a) != 0) {
         let bit = octant_bit(axis);
         if c & bit != 0 {
-            r[face(axis, false)] = first + (c ^ bit) as u32;
+            r[face(axis, false)] = node.child(c ^ bit);
         } else {
-            r[face(axis, true)] = first + (c | bit) as u32;
+            r[face(axis, true)] = node.child(c | bit);
         }
     }
     r
+}
+
+/// The octants of a split of `axes`, in increasing order (the order children are stored in).
+fn octants(axes: usize) -> impl Iterator<Item = usize> {
+    (0..8).filter(move |c| c & !axes == 0)
 }
 
 struct Builder<'a, G: Geometry> {
@@ -137,36 +138,39 @@ impl<G: Geometry> Builder<'_, G> {
         self.tree.prim_ids.extend_from_slice(prims);
     }
 
-    /// The children's primitive lists, or `None` when the node stays a leaf: few enough
-    /// primitives, the depth limit, a cell too small to split in `f32` or too small against the
-    /// overlap padding ([`MIN_SIDE_IN_PADS`]), or a split that separates
-    /// nothing (two or more children non-empty and each holding every primitive: coincident or
-    /// duplicate primitives, or a fan around a shared vertex). A split that moves all primitives
-    /// into a single child is kept: it zooms in on a small cluster, bounded by `max_depth`.
-    fn split(&self, cell: &Aabb, mid: Vec3A, prims: &[u32], level: usize) -> Option<[Vec<u32>; 8]> {
+    /// The split and the children's primitive lists (in octant order), or `None` when the node
+    /// stays a leaf: few enough primitives, the depth limit, no axis worth splitting ([`place`]:
+    /// none pays by SAH, or the cell is too narrow against the overlap padding), or a split that
+    /// separates nothing (two or more children non-empty and each holding every primitive:
+    /// coincident or duplicate primitives, or a fan around a shared vertex). A split that moves
+    /// all primitives into a single child is kept: it cuts off empty space or zooms in on a small
+    /// cluster, bounded by `max_depth`.
+    fn split(&self, cell: &Aabb, prims: &[u32], level: usize) -> Option<(Split, Vec<Vec<u32>>)> {
         if prims.len() <= self.params.max_prims || level >= self.params.max_depth {
             return None;
         }
-        if !(cell.min.cmplt(mid).all() && mid.cmplt(cell.max).all()) {
+        let pad =
+            cell.min.abs().max(cell.max.abs()).max_element() * OVERLAP_PAD + f32::MIN_POSITIVE;
+        let bounds: Vec<Aabb> = prims.iter().map(|&p| self.geom.bounds(p)).collect();
+        let split = place(cell, &bounds, pad);
+        if split.axes == 0 {
             return None;
         }
-        let pad = cell.min.abs().max(cell.max.abs()).max_element() * OVERLAP_PAD;
-        if cell.extent().min_element() < MIN_SIDE_IN_PADS * pad {
-            return None;
-        }
-        let children: [Vec<u32>; 8] = std::array::from_fn(|c| {
-            let b = octant_cell(cell, mid, c);
-            prims
-                .iter()
-                .copied()
-                .filter(|&p| self.geom.overlaps_box(p, &b))
-                .collect()
-        });
+        let children: Vec<Vec<u32>> = octants(split.axes)
+            .map(|c| {
+                let b = octant_cell(cell, split.point, c);
+                prims
+                    .iter()
+                    .copied()
+                    .filter(|&p| self.geom.overlaps_box(p, &b))
+                    .collect()
+            })
+            .collect();
         let non_empty = children.iter().filter(|c| !c.is_empty()).count();
         let separates = children
             .iter()
             .any(|c| !c.is_empty() && c.len() < prims.len());
-        (non_empty <= 1 || separates).then_some(children)
+        (non_empty <= 1 || separates).then_some((split, children))
     }
 
     fn build(
@@ -179,29 +183,30 @@ impl<G: Geometry> Builder<'_, G> {
         self.tree.nodes[idx as usize].ropes = ropes;
         self.tree.max_level = self.tree.max_level.max(level);
         let cell = self.tree.nodes[idx as usize].cell();
-        let mid = cell.min + (cell.max - cell.min) * 0.5;
-        let Some(children) = self.split(&cell, mid, prims, level) else {
+        let Some((split, children)) = self.split(&cell, prims, level) else {
             self.make_leaf(idx, prims);
             return Ok(());
         };
         let first = self.tree.nodes.len();
-        if first + 8 > MAX_NODES {
+        if first + children.len() > MAX_NODES {
             return Err(failed(format!(
                 "more than {MAX_NODES} nodes; lower max_depth ({}) or raise max_prims ({})",
                 self.params.max_depth, self.params.max_prims
             )));
         }
-        let first = first as u32;
-        for c in 0..8 {
-            self.tree.nodes.push(Node::new(octant_cell(&cell, mid, c)));
+        for c in octants(split.axes) {
+            self.tree
+                .nodes
+                .push(Node::new(octant_cell(&cell, split.point, c)));
             self.tree.contents.push(Aabb::EMPTY);
         }
         let node = &mut self.tree.nodes[idx as usize];
-        node.first = first;
+        node.first = first as u32;
         node.count = INTERNAL;
-        for (c, child) in children.iter().enumerate() {
-            let r = child_ropes(&ropes, first, c);
-            self.build(first + c as u32, child, level + 1, r)?;
+        node.split = split.axes as u32;
+        let node = *node;
+        for (c, child) in octants(split.axes).zip(&children) {
+            self.build(node.child(c), child, level + 1, child_ropes(&node, c))?;
         }
         Ok(())
     }
@@ -242,8 +247,9 @@ impl OctreeTree {
     }
 }
 
-/// Havran's rope optimization: moves each rope down from the equal-or-larger neighbour to the
-/// deepest node that still covers the whole face, so the neighbor traversal descends less.
+/// Havran's rope optimization: moves each rope down from the neighbour at the same or a
+/// shallower depth to the deepest node that still covers the whole face, so the neighbor
+/// traversal descends less.
 fn tighten_ropes(tree: &mut OctreeTree) {
     for n in 0..tree.nodes.len() {
         let cell = tree.nodes[n].cell();
@@ -252,8 +258,8 @@ fn tighten_ropes(tree: &mut OctreeTree) {
                 let f = face(axis, upper);
                 let mut r = tree.nodes[n].ropes[f];
                 while r != NO_ROPE && !tree.nodes[r as usize].is_leaf() {
-                    let first = tree.nodes[r as usize].first;
-                    let mid = tree.nodes[first as usize].max();
+                    let target = tree.nodes[r as usize];
+                    let mid = tree.nodes[target.first as usize].max();
                     // The child on our side of the face, on the side of `cell` elsewhere.
                     let mut c = 0;
                     for b in 0..3 {
@@ -266,14 +272,15 @@ fn tighten_ropes(tree: &mut OctreeTree) {
                             c |= octant_bit(b);
                         }
                     }
-                    let child = &tree.nodes[first as usize + c].cell();
-                    let covers = (0..3)
-                        .filter(|&b| b != axis)
-                        .all(|b| child.min[b] <= cell.min[b] && cell.max[b] <= child.max[b]);
+                    let child = target.child(c);
+                    let child_cell = tree.nodes[child as usize].cell();
+                    let covers = (0..3).filter(|&b| b != axis).all(|b| {
+                        child_cell.min[b] <= cell.min[b] && cell.max[b] <= child_cell.max[b]
+                    });
                     if !covers {
                         break;
                     }
-                    r = first + c as u32;
+                    r = child;
                 }
                 tree.nodes[n].ropes[f] = r;
             }

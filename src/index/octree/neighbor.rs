@@ -1,6 +1,6 @@
 //! Neighbor traversal ("trace rays through neighbor cells"): find the leaf holding the ray's
 //! entry point, test it, compute where and through which face the ray leaves it, follow that
-//! face's rope to the equal-or-larger neighbour, and descend it to the leaf holding the ray at
+//! face's rope to the deepest node covering that face, and descend it to the leaf holding the ray at
 //! the exit parameter. Edges and corners need no special case: the ray leaves through one of the
 //! tied faces, and the descent, which already counts the other tied planes as crossed, lands in
 //! the diagonal cell (or, when the neighbour is not split there, in a cell the ray leaves again
@@ -29,7 +29,7 @@ fn locate<S: Stats>(tree: &OctreeTree, r: &AxisRay, mut node: u32, t: f32, stats
             return node;
         }
         let mid = tree.nodes[n.first as usize].max();
-        node = n.first + r.child_at(mid, t) as u32;
+        node = n.child(r.child_at(mid, t));
     }
 }
 

@@ -60,13 +60,21 @@ fn descend<S: Stats>(
         }
         return w.cutoff <= exit;
     }
-    let tm = w.r.mid_crossings(tree.nodes[n.first as usize].max());
+    // An unsplit axis reads as split at the cell's near face: the ray is beyond it from the
+    // start (its octant bit is set), the children's slabs on that axis are the node's, and
+    // crossing the far face leaves the node.
+    let split = mask_of(n.split as usize);
+    let tm = Vec3A::select(
+        split,
+        w.r.mid_crossings(tree.nodes[n.first as usize].max()),
+        t0,
+    );
     let mut c = AxisRay::octant_at(tm, t0.max_element().max(t_start));
     loop {
         let upper = mask_of(c);
         let ct0 = Vec3A::select(upper, tm, t0);
         let ct1 = Vec3A::select(upper, t1, tm);
-        let child = n.first + (c ^ w.r.mask) as u32;
+        let child = n.child(c ^ w.r.mask);
         if descend(tree, w, child, (ct0, ct1), t_start, stats, visit) {
             return true;
         }

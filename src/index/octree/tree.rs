@@ -1,5 +1,6 @@
-//! The octree's flat node layout, shared by both traversals: nodes with their cells, the eight
-//! children of a node stored contiguously, leaf primitive ids in one array, and face ropes.
+//! The octree's flat node layout, shared by both traversals: nodes with their cells, the two,
+//! four or eight children of a node stored contiguously, leaf primitive ids in one array, and
+//! face ropes.
 
 use crate::geometry::{Aabb, Ray};
 use crate::index::Stats;
@@ -10,10 +11,14 @@ pub(super) const INTERNAL: u32 = u32::MAX;
 /// A rope that leads nowhere (the face lies on the root's boundary).
 pub(super) const NO_ROPE: u32 = u32::MAX;
 
-/// One node, one cache line: its cell, its children or primitives, and its face ropes (all a
-/// neighbour-traversal step reads; a leaf's content box, read only for non-empty leaves, is kept
-/// apart in [`OctreeTree::contents`]). Child `c` of an internal node is `first + c`, with the
-/// octant bits of Revelles et al. 2000: `4` = upper half in x, `2` = upper in y, `1` = upper in z.
+/// One node, one cache line: its cell, its children or primitives, its split axes and its face
+/// ropes (all a neighbour-traversal step reads; a leaf's content box, read only for non-empty
+/// leaves, is kept apart in [`OctreeTree::contents`]).
+///
+/// An internal node splits the axes in `split` (octant bits of Revelles et al. 2000: `4` = x,
+/// `2` = y, `1` = z) at one point, and has one child per octant whose bits lie in `split` (2, 4
+/// or 8): the child of octant `c` (bit set = upper side on that axis; bits of unsplit axes are
+/// ignored) is [`Node::child`]`(c)`, the children stored in increasing octant order from `first`.
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(64))]
 pub(super) struct Node {
@@ -23,13 +28,42 @@ pub(super) struct Node {
     min: [f32; 3],
     /// Internal: index of the first of the eight children. Leaf: offset into `prim_ids`.
     pub first: u32,
-    /// Upper corner of the closed cell (of child 0: its parent's split point).
+    /// Upper corner of the closed cell (of the first child: its parent's split point on the split
+    /// axes).
     max: [f32; 3],
     /// Leaf: number of primitive ids. Internal: [`INTERNAL`].
     pub count: u32,
     /// `ropes[f]`: the node across face `f` (see [`OctreeTree`]), or [`NO_ROPE`].
     pub ropes: [u32; 6],
+    /// Internal: the octant bits of the axes split (at least one). Leaf: 0.
+    pub split: u32,
 }
+
+/// `COMPACT[m][c]` (`c` a subset of `m`): the rank of octant `c` among the octants whose bits lie
+/// in `m`, in increasing order (the bits of `c` in `m`'s positions, packed: a 3-bit `pext`).
+const COMPACT: [[u8; 8]; 8] = {
+    let mut t = [[0u8; 8]; 8];
+    let mut m = 0;
+    while m < 8 {
+        let mut c = 0;
+        while c < 8 {
+            let (mut bit, mut out, mut k) = (1, 0, 0);
+            while bit < 8 {
+                if m & bit != 0 {
+                    if c & bit != 0 {
+                        out |= 1 << k;
+                    }
+                    k += 1;
+                }
+                bit <<= 1;
+            }
+            t[m][c] = out;
+            c += 1;
+        }
+        m += 1;
+    }
+    t
+};
 
 impl Node {
     /// A leaf without primitives or ropes over `cell`.
@@ -40,7 +74,21 @@ impl Node {
             max: cell.max.to_array(),
             count: 0,
             ropes: [NO_ROPE; 6],
+            split: 0,
         }
+    }
+
+    /// The child of an internal node holding octant `c` (bits of unsplit axes ignored).
+    #[inline(always)]
+    pub fn child(&self, c: usize) -> u32 {
+        let m = self.split as usize;
+        self.first + u32::from(COMPACT[m][c & m])
+    }
+
+    /// Number of children of an internal node (2, 4 or 8).
+    #[cfg(test)]
+    pub fn child_count(&self) -> usize {
+        1 << self.split.count_ones()
     }
 
     /// The closed cell.
@@ -49,7 +97,8 @@ impl Node {
         Aabb::new(Vec3A::from_array(self.min), Vec3A::from_array(self.max))
     }
 
-    /// The cell's upper corner (of a first child: the parent's split point).
+    /// The cell's upper corner (of a first child: the parent's split point on its split axes,
+    /// the parent's upper corner on the others).
     #[inline(always)]
     pub fn max(&self) -> Vec3A {
         Vec3A::from_array(self.max)
@@ -75,11 +124,13 @@ pub(super) const fn octant_bit(axis: usize) -> usize {
 
 /// The built octree that both traversals walk.
 ///
-/// Invariants: `nodes[0]` is the root, a cube enclosing the scene bounds (padded); every
+/// Invariants: `nodes[0]` is the root, a box enclosing the scene bounds (padded); the children of
+/// a node tile its cell; every
 /// primitive whose conservative overlap test ([`crate::scene::Geometry::overlaps_box`]) accepts a
 /// leaf's cell is listed in that leaf; `nodes[n].ropes[f]` is the deepest node whose cell covers the
-/// whole face `f` of node `n` from the other side (Samet's equal-or-larger neighbour, moved down
-/// as far as it still covers the face, after Havran), or [`NO_ROPE`] on the root's boundary;
+/// whole face `f` of node `n` from the other side (Samet's neighbour at the same or a shallower
+/// depth, moved down as far as it still covers the face, after Havran; with split points off
+/// the middle it may be thinner than `n` across the face), or [`NO_ROPE`] on the root's boundary;
 /// `contents[n]` is leaf `n`'s content box (empty for internal nodes and empty leaves).
 #[derive(Debug, Clone)]
 pub struct OctreeTree {
