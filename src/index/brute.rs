@@ -1,6 +1,6 @@
 //! Brute force: test every primitive. The reference every other index must match.
 
-use super::{BuildError, Index, IndexInfo, Stats};
+use super::{BuildError, Index, IndexInfo, Stats, prim_test, query};
 use crate::geometry::{ClosestHit, Hit, Ray};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
@@ -16,6 +16,22 @@ pub struct BruteForce {
 #[serde(deny_unknown_fields)]
 pub struct BruteParams {}
 
+/// Every primitive tested, in id order.
+#[inline]
+fn closest<G: Geometry, S: Stats>(b: &BruteForce, g: &G, r: &Ray, s: &mut S) -> Option<Hit> {
+    let mut best = ClosestHit::new(r.t_max);
+    for prim in 0..b.len {
+        prim_test::closest(&mut best, g, prim, r, s);
+    }
+    best.get()
+}
+
+/// Whether any primitive is hit, stopping at the first.
+#[inline]
+fn any<G: Geometry, S: Stats>(b: &BruteForce, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+    (0..b.len).any(|prim| prim_test::any(geom, prim, ray, stats))
+}
+
 impl Index for BruteForce {
     type Params = BruteParams;
 
@@ -28,30 +44,7 @@ impl Index for BruteForce {
         })
     }
 
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        let mut best = ClosestHit::new(ray.t_max);
-        for prim in 0..self.len {
-            stats.prim_test();
-            if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                best.offer(t, prim);
-            }
-        }
-        best.get()
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        (0..self.len).any(|prim| {
-            stats.prim_test();
-            geom.intersect(prim, ray, ray.t_max).is_some()
-        })
-    }
+    query::ray_queries!(closest, any, |index| index);
 
     fn info(&self) -> IndexInfo {
         IndexInfo {

@@ -15,7 +15,7 @@
 use super::node::Child;
 use crate::geometry::triangle::lanes::TriangleBlock;
 use crate::geometry::{ClosestHit, Ray, Triangle};
-use crate::index::Stats;
+use crate::index::{Stats, prim_test};
 use crate::scene::Geometry;
 
 /// Triangles per [`TriangleBlock`]: a leaf of up to this many costs one lane-wise test.
@@ -119,10 +119,7 @@ impl Leaves<'_> {
         match self {
             Leaves::Ids(ids) => {
                 for &prim in &ids[first..first + count] {
-                    stats.prim_test();
-                    if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                        best.offer(t, prim);
-                    }
+                    prim_test::closest(best, geom, prim, ray, stats);
                 }
             }
             Leaves::Blocks(blocks) => {
@@ -150,10 +147,9 @@ impl Leaves<'_> {
     ) -> bool {
         let (first, count) = (leaf.index as usize, leaf.count as usize);
         match self {
-            Leaves::Ids(ids) => ids[first..first + count].iter().any(|&prim| {
-                stats.prim_test();
-                geom.intersect(prim, ray, ray.t_max).is_some()
-            }),
+            Leaves::Ids(ids) => ids[first..first + count]
+                .iter()
+                .any(|&prim| prim_test::any(geom, prim, ray, stats)),
             Leaves::Blocks(blocks) => {
                 (0..count).for_each(|_| stats.prim_test());
                 blocks[first..first + count.div_ceil(BLOCK_LANES as usize)]

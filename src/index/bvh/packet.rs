@@ -30,7 +30,7 @@ use super::node::Child;
 use super::packet_slab::{PacketRays, hit_box};
 use super::traverse::{STACK, Tree};
 use super::walk::{Rooted, Top};
-use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::index::stack::Stack;
 use crate::index::{MAX_PACKET, Stats};
 use crate::scene::Geometry;
@@ -39,37 +39,39 @@ use glam::Vec4;
 /// A box tree as the packet walk sees it: nodes of up to `W` children, a stack bound of `N`
 /// entries (at most `W - 1` pushes per level).
 pub(crate) trait PacketTree<const W: usize, const N: usize>: Rooted {
-    /// The packet slab test of inner node `node`'s children against each lane's `[t_min,
-    /// t_max]`: per child `i`, the mask of the lanes that hit its box (0 for absent children)
-    /// and their entries (meaningful in the mask).
-    fn hit<const SAFE: bool, V: Lanes>(
-        &self,
-        node: u32,
-        rays: &PacketRays<V>,
-        t_max: V,
-    ) -> ([u32; W], [V; W]);
-    /// Box tests of one ray at inner node `node`, as the single-ray step counts them.
+    /// The box of child `i` of inner node `node` (`i` below [`PacketTree::boxes`]).
+    fn child_box(&self, node: u32, i: usize) -> Aabb;
+    /// Box tests of one ray at inner node `node`, as the single-ray step counts them: the
+    /// number of children.
     fn boxes(&self, node: u32) -> u32;
     /// Child `i` of inner node `node`.
     fn child(&self, node: u32, i: usize) -> Child;
-}
 
-impl PacketTree<2, STACK> for Tree<'_> {
+    /// The packet slab test of inner node `node`'s children against each lane's `[t_min,
+    /// t_max]`: per child `i`, the mask of the lanes that hit its box (0 for absent children)
+    /// and their entries (meaningful in the mask).
     #[inline(always)]
     fn hit<const SAFE: bool, V: Lanes>(
         &self,
         node: u32,
         rays: &PacketRays<V>,
         t_max: V,
-    ) -> ([u32; 2], [V; 2]) {
-        let n = &self.nodes[node as usize];
-        let (x, y, z) = (n.x.to_array(), n.y.to_array(), n.z.to_array());
-        let test = |i: usize| {
-            let (min, max) = ([x[i], y[i], z[i]], [x[i + 2], y[i + 2], z[i + 2]]);
-            hit_box::<SAFE, V>(min, max, rays, t_max)
-        };
-        let ((ma, ea), (mb, eb)) = (test(0), test(1));
-        ([ma, mb], [ea, eb])
+    ) -> ([u32; W], [V; W]) {
+        let mut masks = [0; W];
+        let mut entries = [t_max; W];
+        for i in 0..self.boxes(node) as usize {
+            let b = self.child_box(node, i);
+            let (min, max) = (b.min.to_array(), b.max.to_array());
+            (masks[i], entries[i]) = hit_box::<SAFE, V>(min, max, rays, t_max);
+        }
+        (masks, entries)
+    }
+}
+
+impl PacketTree<2, STACK> for Tree<'_> {
+    #[inline(always)]
+    fn child_box(&self, node: u32, i: usize) -> Aabb {
+        self.nodes[node as usize].child_bounds(i)
     }
 
     #[inline(always)]

@@ -14,7 +14,7 @@
 
 use super::{Embree, EmbreeParams};
 use crate::geometry::{Hit, Ray};
-use crate::index::{BuildError, Index, IndexInfo, Stats};
+use crate::index::{BuildError, Index, IndexInfo, Stats, query};
 use crate::scene::Geometry;
 use embree3::{Hit16, INVALID_ID, IntersectContext, Ray16, RayHit16, ValidMask, ValidMaskN};
 
@@ -63,20 +63,8 @@ impl Index for EmbreeP16 {
         Embree::build_named(geom, params, "embree-p16").map(EmbreeP16)
     }
 
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        self.0.closest_hit(geom, ray, stats)
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        self.0.any_hit(geom, ray, stats)
-    }
+    // Single rays (the last-hit cache) go to the robust scene's `rtcIntersect1`/`rtcOccluded1`.
+    query::ray_queries!(Index::closest_hit, Index::any_hit, |index| &index.0);
 
     fn info(&self) -> IndexInfo {
         self.0.info()

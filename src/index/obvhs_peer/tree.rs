@@ -3,7 +3,7 @@
 
 use super::{ObvhsParams, culling_bound, prim_boxes};
 use crate::geometry::{ClosestHit, Hit, Ray};
-use crate::index::{BuildError, Index, IndexInfo, Stats};
+use crate::index::{BuildError, Index, IndexInfo, Stats, prim_test, query};
 use crate::scene::Geometry;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -32,6 +32,35 @@ pub trait ObvhsTree: Sized + Send + Sync + 'static {
 #[derive(Clone)]
 pub struct Obvhs<T>(T);
 
+/// The closest hit: obvhs's `tmax` follows the best `t` with [`culling_bound`]'s slack.
+#[inline]
+fn closest<T: ObvhsTree, G: Geometry, S: Stats>(
+    tree: &T,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> Option<Hit> {
+    let mut best = ClosestHit::new(ray.t_max);
+    tree.walk(ray, stats, |prim, stats, oray| {
+        if prim_test::closest(&mut best, geom, prim, ray, stats) {
+            oray.tmax = culling_bound(best.t());
+        }
+        true
+    });
+    best.get()
+}
+
+/// Whether any primitive is hit, stopping at the first (as far as obvhs's loop allows).
+#[inline]
+fn any<T: ObvhsTree, G: Geometry, S: Stats>(tree: &T, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+    let mut found = false;
+    tree.walk(ray, stats, |prim, stats, _| {
+        found |= prim_test::any(geom, prim, ray, stats);
+        !found
+    });
+    found
+}
+
 impl<T: ObvhsTree> Index for Obvhs<T> {
     type Params = ObvhsParams;
 
@@ -41,36 +70,7 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
         Ok(Obvhs(T::build(&boxes, params, &mut Duration::default())))
     }
 
-    /// The closest hit: obvhs's `tmax` follows the best `t` with [`culling_bound`]'s slack.
-    #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
-        let mut best = ClosestHit::new(ray.t_max);
-        self.0.walk(ray, stats, |prim, stats, oray| {
-            stats.prim_test();
-            if let Some(t) = geom.intersect(prim, ray, best.t()) {
-                best.offer(t, prim);
-                oray.tmax = culling_bound(best.t());
-            }
-            true
-        });
-        best.get()
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        let mut found = false;
-        self.0.walk(ray, stats, |prim, stats, _| {
-            stats.prim_test();
-            found |= geom.intersect(prim, ray, ray.t_max).is_some();
-            !found
-        });
-        found
-    }
+    query::ray_queries!(closest, any, |index| &index.0);
 
     fn info(&self) -> IndexInfo {
         self.0.info()

@@ -7,28 +7,14 @@
 //! ([`super::node::WideNode::valid`]).
 
 use super::traverse::{STACK, Tree};
-use crate::index::bvh::lanes::Lanes;
+use crate::geometry::Aabb;
 use crate::index::bvh::node::Child;
 use crate::index::bvh::packet::PacketTree;
-use crate::index::bvh::packet_slab::{PacketRays, hit_box};
 
 impl<const C: usize> PacketTree<8, STACK> for Tree<'_, C> {
     #[inline(always)]
-    fn hit<const SAFE: bool, V: Lanes>(
-        &self,
-        node: u32,
-        rays: &PacketRays<V>,
-        t_max: V,
-    ) -> ([u32; 8], [V; 8]) {
-        let n = &self.nodes[node as usize];
-        let mut masks = [0; 8];
-        let mut entries = [t_max; 8];
-        for i in 0..n.width() {
-            let b = n.child_box(i);
-            let (min, max) = ([0, 1, 2].map(|k| b.min[k]), [0, 1, 2].map(|k| b.max[k]));
-            (masks[i], entries[i]) = hit_box::<SAFE, V>(min, max, rays, t_max);
-        }
-        (masks, entries)
+    fn child_box(&self, node: u32, i: usize) -> Aabb {
+        self.nodes[node as usize].child_box(i)
     }
 
     #[inline(always)]
