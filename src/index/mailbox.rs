@@ -77,13 +77,14 @@ pub fn with_mailbox<R>(len: usize, f: impl FnOnce(&mut Mailbox) -> R) -> R {
 /// over before the walk stops (each implementation documents why). A cell may be left out when
 /// none of its primitives can hit within `[t_min, cutoff]`.
 pub trait CellWalk {
-    fn for_each_cell<S: Stats>(
-        &self,
-        ray: &Ray,
-        stats: &mut S,
-        visit: impl FnMut(&[u32], &mut S) -> f32,
-    );
+    fn for_each_cell<S: Stats>(&self, ray: &Ray, stats: &mut S, visit: impl CellVisit<S>);
 }
+
+/// The visitor [`CellWalk::for_each_cell`] calls per cell: the cell's primitive ids and the
+/// counters in, the cutoff out.
+pub trait CellVisit<S>: FnMut(&[u32], &mut S) -> f32 {}
+
+impl<S, F: FnMut(&[u32], &mut S) -> f32> CellVisit<S> for F {}
 
 /// Whether primitive `prim` can hit `ray` within `[ray.t_min, cutoff]`: its bounds' slab test
 /// first (one box test, counted), then the shared kernel ([`Geometry::intersect`], one primitive

@@ -16,7 +16,7 @@ pub use dda::Dda;
 pub use layout::Layout;
 pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, check_lambda, heuristic_resolution};
 
-use super::mailbox::{CellWalk, cell_walk_queries};
+use super::mailbox::{CellVisit, CellWalk, cell_walk_queries};
 use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, Ray};
 use crate::scene::Geometry;
@@ -81,12 +81,7 @@ impl Grid {
 /// `dda` module).
 impl CellWalk for Grid {
     #[inline(always)]
-    fn for_each_cell<S: Stats>(
-        &self,
-        ray: &Ray,
-        stats: &mut S,
-        mut visit: impl FnMut(&[u32], &mut S) -> f32,
-    ) {
+    fn for_each_cell<S: Stats>(&self, ray: &Ray, stats: &mut S, mut visit: impl CellVisit<S>) {
         stats.box_tests(1);
         let Some(walk) = self.walk(ray) else {
             return;

@@ -23,7 +23,7 @@
 mod build;
 
 use super::grid::{Dda, Layout, check_lambda, finite_bounds};
-use super::mailbox::{CellWalk, cell_walk_queries};
+use super::mailbox::{CellVisit, CellWalk, cell_walk_queries};
 use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::Ray;
 use crate::scene::Geometry;
@@ -78,12 +78,7 @@ impl CellWalk for Grid2 {
     /// the cutoff (the best `t`, or `-inf` to stop); the walk stops after a cell whose exit is at
     /// or beyond the cutoff (exact: see the module documentation).
     #[inline(always)]
-    fn for_each_cell<S: Stats>(
-        &self,
-        ray: &Ray,
-        stats: &mut S,
-        mut visit: impl FnMut(&[u32], &mut S) -> f32,
-    ) {
+    fn for_each_cell<S: Stats>(&self, ray: &Ray, stats: &mut S, mut visit: impl CellVisit<S>) {
         stats.box_tests(1);
         let top = &self.levels.top;
         let Some((mut enter, _)) = top.bounds.ray_interval(ray, ray.t_min, ray.t_max) else {

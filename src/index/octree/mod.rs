@@ -49,7 +49,7 @@ pub use place::MIN_SIDE_IN_PADS;
 pub use topdown::TopDown;
 pub use tree::OctreeTree;
 
-use super::mailbox::{CellWalk, cell_walk_queries};
+use super::mailbox::{CellVisit, CellWalk, cell_walk_queries};
 use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::Ray;
 use crate::scene::Geometry;
@@ -96,12 +96,7 @@ impl<O: LeafOrder> Octree<O> {
 /// The leaves in the traversal's order (exact: see the module documentation).
 impl<O: LeafOrder> CellWalk for Octree<O> {
     #[inline(always)]
-    fn for_each_cell<S: Stats>(
-        &self,
-        ray: &Ray,
-        stats: &mut S,
-        visit: impl FnMut(&[u32], &mut S) -> f32,
-    ) {
+    fn for_each_cell<S: Stats>(&self, ray: &Ray, stats: &mut S, visit: impl CellVisit<S>) {
         stats.box_tests(1);
         let root = self.tree.root_cell();
         if let Some((enter, _)) = root.ray_interval(ray, ray.t_min, ray.t_max) {
