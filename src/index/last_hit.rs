@@ -24,6 +24,9 @@ use glam::Vec3A;
 use std::sync::atomic::AtomicU32;
 use std::sync::atomic::Ordering::Relaxed;
 
+/// [`KernelRange`]'s note before any primitive was reported hit.
+const NOT_FOUND: u32 = u32::MAX;
+
 /// A geometry whose kernel sees `kernel_t_max` as the ray's `t_max` whatever the ray passed in
 /// says (see the module doc), and which notes the last primitive it reported a hit on;
 /// everything else is the inner geometry's. One per worker (the note is a relaxed atomic only
@@ -40,7 +43,7 @@ impl<G: Geometry> KernelRange<G> {
         KernelRange {
             inner,
             kernel_t_max: f32::INFINITY,
-            found: AtomicU32::new(u32::MAX),
+            found: AtomicU32::new(NOT_FOUND),
         }
     }
 }
@@ -160,7 +163,53 @@ pub fn any_hit<I: Index, G: Geometry, S: Stats>(
         }
     }
     range.kernel_t_max = ray.t_max;
+    range.found.store(NOT_FOUND, Relaxed);
     let occluded = index.any_hit(&*range, ray, stats);
-    *last = occluded.then(|| range.found.load(Relaxed));
+    // An outside peer decides with its own triangle test, so it may report an occluder it never
+    // asked this geometry about: then nothing is kept.
+    *last = match range.found.load(Relaxed) {
+        NOT_FOUND => None,
+        found => occluded.then_some(found),
+    };
     occluded
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::triangle::Exact;
+    use crate::index::{BuildError, IndexInfo, NoStats};
+    use crate::scene::Triangles;
+    use glam::Vec3;
+
+    /// A peer that answers "occluded" with a test of its own, never asking the geometry.
+    struct OwnTest;
+
+    impl Index for OwnTest {
+        type Params = ();
+        fn build<G: Geometry>(_: &G, _: &()) -> Result<Self, BuildError> {
+            Ok(OwnTest)
+        }
+        fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, _: &Ray, _: &mut S) -> Option<Hit> {
+            None
+        }
+        fn any_hit<G: Geometry, S: Stats>(&self, _: &G, _: &Ray, _: &mut S) -> bool {
+            true
+        }
+        fn info(&self) -> IndexInfo {
+            IndexInfo::default()
+        }
+    }
+
+    #[test]
+    fn an_occluder_the_geometry_never_saw_is_not_kept() {
+        let tri = Triangle::new(Vec3A::X, Vec3A::Y, Vec3A::Z);
+        let mut range = KernelRange::new(Triangles::<Exact>::new(vec![tri].into()));
+        let ray = Ray::new(Vec3::ZERO, Vec3::NEG_ONE, 0.0, f32::INFINITY).unwrap();
+        let mut last = None;
+        for _ in 0..2 {
+            assert!(any_hit(&OwnTest, &mut range, &ray, &mut last, &mut NoStats));
+            assert_eq!(last, None);
+        }
+    }
 }
