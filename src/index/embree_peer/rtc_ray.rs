@@ -85,17 +85,11 @@ pub(super) fn init_ray_hit<'a>(slot: &'a mut MaybeUninit<RayHit>, ray: &Ray) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
 
     #[test]
     fn lanes_land_in_embree_fields() {
-        let ray = Ray::new(
-            Vec3::new(1.0, 2.0, 3.0),
-            Vec3::new(-4.0, 5.0, -6.0),
-            0.5,
-            7.0,
-        )
-        .unwrap();
+        let (origin, dir): ([f32; 3], [f32; 3]) = ([1.0, 2.0, 3.0], [-4.0, 5.0, -6.0]);
+        let ray = Ray::new(origin.into(), dir.into(), 0.5, 7.0).unwrap();
         let mut slot = MaybeUninit::new(RayHit::from(embree3::Ray::new(
             [0.0; 3], [1.0; 3], 9.0, 9.0, 9.0, 0, 9,
         )));
