@@ -11,11 +11,11 @@
 //! [`Geometry`] contract clamps `t` into the slab interval of its bounds, computed with the same
 //! formula), so ties on a split plane are resolved by id as brute force does.
 //!
-//! Build: with the default parameters the Stanford bunny (69,451 triangles) gives 1.15 M nodes,
-//! 8.7 references per triangle, 11.6 MB. Most of the time is the sweeps and the clipping of
-//! straddling triangles; the children of the top six levels are built in parallel
-//! (`rayon::join`) into separate arrays joined by shifting their links, so the tree is the one
-//! the sequential build makes (tested node for node).
+//! Build: the children of the top six levels are built in parallel (`rayon::join`) into
+//! separate arrays joined by shifting their links, so the tree is the one the sequential build
+//! makes (tested node for node). Most of the time is the sweeps and the clipping of straddling
+//! triangles. Tree sizes with the default depth limit: see
+//! [`crate::index::near_far::default_max_depth`].
 
 mod build;
 mod node;
@@ -41,7 +41,7 @@ pub struct KdParams {
     pub traversal_cost: f32,
     /// Fraction of the cost saved by a split that cuts off an empty child, in `[0, 1)`.
     pub empty_bonus: f32,
-    /// Deepest level (root = 0); absent: `8 + 1.3 log2 N`. At most 64.
+    /// Deepest level (root = 0); absent: `3 + 1.3 log2 N`. At most 64.
     pub max_depth: Option<u32>,
     /// Nodes with at most this many primitives become leaves (at least 1).
     pub leaf_size: u32,
