@@ -4,6 +4,7 @@
 mod common;
 mod partition_kit;
 
+use accelbench::index::kdtree::KdKind;
 use accelbench::index::{Index, KdTree};
 use accelbench::scene::{Scene, generators};
 use partition_kit::*;
@@ -54,5 +55,14 @@ fn degenerate_input_terminates_and_agrees() {
 /// Mailboxing, the structure figures and typed parameter errors (`partition_kit`).
 #[test]
 fn partition_basics_hold() {
-    assert_partition_basics::<KdTree>("kdtree", 8, &[]);
+    let leaves = |t: &KdTree| {
+        t.nodes()
+            .iter()
+            .filter_map(|n| match n.kind() {
+                KdKind::Leaf { first, count } => Some((first, count)),
+                KdKind::Interior { .. } => None,
+            })
+            .collect()
+    };
+    assert_partition_basics::<KdTree>("kdtree", 8, leaves, &[]);
 }

@@ -93,6 +93,7 @@ pub(super) fn build<G: Geometry>(
         out: Built {
             nodes: Vec::new(),
             ids: Vec::new(),
+            refs: 0,
             depth: 0,
             leaves: 0,
             empty_leaves: 0,
@@ -156,15 +157,23 @@ impl<G: Geometry> Builder<'_, G> {
         Ok(())
     }
 
+    /// A leaf over `refs`: one primitive is held in the node itself, more as a sorted run of
+    /// the id array.
     fn leaf(&mut self, refs: &[Ref], depth: u32) -> Result<(), BuildError> {
         let o = &mut self.out;
         if refs.len() as u64 > MAX_LINK as u64 || o.ids.len() + refs.len() > u32::MAX as usize {
             return Err(too_big());
         }
-        let first = o.ids.len();
-        o.ids.extend(refs.iter().map(|r| r.prim));
-        o.ids[first..].sort_unstable();
-        o.nodes.push(BspNode::leaf(first as u32, refs.len() as u32));
+        let node = if let [one] = refs {
+            BspNode::leaf(one.prim, 1)
+        } else {
+            let first = o.ids.len();
+            o.ids.extend(refs.iter().map(|r| r.prim));
+            o.ids[first..].sort_unstable();
+            BspNode::leaf(first as u32, refs.len() as u32)
+        };
+        o.nodes.push(node);
+        o.refs += refs.len();
         o.leaves += 1;
         o.empty_leaves += refs.is_empty() as usize;
         o.depth = o.depth.max(depth as usize + 1);

@@ -44,6 +44,8 @@ struct Builder<'a, G: Geometry> {
     pad: f32,
     nodes: Vec<KdNode>,
     ids: Vec<u32>,
+    /// References over all leaves so far.
+    refs: usize,
     /// Scratch, by primitive id: the side of each primitive of the node being split.
     side: Vec<Side>,
     /// Scratch: the primitives of the node being split that go to both sides.
@@ -118,6 +120,7 @@ fn subtree<G: Geometry>(
         pad,
         nodes: Vec::new(),
         ids: Vec::new(),
+        refs: 0,
         side: vec![Side::Both; geom.len()],
         straddling: Vec::new(),
         pool: Vec::new(),
@@ -133,6 +136,7 @@ fn subtree<G: Geometry>(
         return Ok(Built {
             nodes: b.nodes,
             ids: b.ids,
+            refs: b.refs,
             depth: b.depth,
             leaves: b.leaves,
             empty_leaves: b.empty_leaves,
@@ -180,6 +184,7 @@ fn join_subtrees(
     Ok(Built {
         nodes,
         ids,
+        refs: below.refs + above.refs,
         depth: below.depth.max(above.depth),
         leaves: below.leaves + above.leaves,
         empty_leaves: below.empty_leaves + above.empty_leaves,
@@ -226,18 +231,24 @@ impl<G: Geometry> Builder<'_, G> {
         best_split_sorted(events, n, cell, &Weights::from(self.costs)).map(|(a, s, _)| (a, s))
     }
 
-    /// A leaf over the primitives whose start events are in `events` (one axis's list).
+    /// A leaf over the primitives whose start events are in `events` (one axis's list): one
+    /// primitive is held in the node itself, more as a sorted run of the id array.
     fn leaf(&mut self, events: &[Event], depth: u32) -> Result<(), BuildError> {
         let count = events.len() / 2;
         if count as u64 > MAX_PAYLOAD as u64 || self.ids.len() + count > u32::MAX as usize {
             return Err(too_big("primitive references"));
         }
-        let first = self.ids.len() as u32;
-        let start = self.ids.len();
-        self.ids
-            .extend(events.iter().filter(|e| e.is_start()).map(Event::item));
-        self.ids[start..].sort_unstable();
-        self.nodes.push(KdNode::leaf(first, count as u32));
+        let mut starts = events.iter().filter(|e| e.is_start()).map(Event::item);
+        let node = if count == 1 {
+            KdNode::leaf(starts.next().unwrap_or_default(), 1)
+        } else {
+            let start = self.ids.len();
+            self.ids.extend(starts);
+            self.ids[start..].sort_unstable();
+            KdNode::leaf(start as u32, count as u32)
+        };
+        self.nodes.push(node);
+        self.refs += count;
         self.leaves += 1;
         self.empty_leaves += (count == 0) as usize;
         self.depth = self.depth.max(depth as usize + 1);

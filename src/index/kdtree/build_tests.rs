@@ -35,8 +35,13 @@ impl<G: Geometry> Oracle<'_, G> {
             let mut ids: Vec<u32> = refs.iter().map(|r| r.0).collect();
             ids.sort_unstable();
             let first = self.b.ids.len() as u32;
-            self.b.ids.extend(&ids);
-            self.b.nodes.push(KdNode::leaf(first, ids.len() as u32));
+            if let [one] = ids[..] {
+                self.b.nodes.push(KdNode::leaf(one, 1));
+            } else {
+                self.b.ids.extend(&ids);
+                self.b.nodes.push(KdNode::leaf(first, ids.len() as u32));
+            }
+            self.b.refs += ids.len();
             self.b.leaves += 1;
             self.b.empty_leaves += ids.is_empty() as usize;
             self.b.depth = self.b.depth.max(depth as usize + 1);
@@ -103,6 +108,7 @@ fn event_lists_build_the_tree_of_a_sort_per_node() {
                 pad,
                 nodes: Vec::new(),
                 ids: Vec::new(),
+                refs: 0,
                 side: Vec::new(),
                 straddling: Vec::new(),
                 pool: Vec::new(),
@@ -120,12 +126,12 @@ fn event_lists_build_the_tree_of_a_sort_per_node() {
         assert_eq!(built.nodes, o.nodes, "{name}: nodes");
         assert_eq!(built.ids, o.ids, "{name}: ids");
         assert_eq!(
-            (built.depth, built.leaves, built.empty_leaves),
-            (o.depth, o.leaves, o.empty_leaves),
+            (built.refs, built.depth, built.leaves, built.empty_leaves),
+            (o.refs, o.depth, o.leaves, o.empty_leaves),
             "{name}"
         );
         // Refs are duplicated, so re-clipping and merging were exercised.
-        assert!(built.ids.len() > geom.len(), "{name}: no straddlers");
+        assert!(built.refs > geom.len(), "{name}: no straddlers");
         splits += built.nodes.len() - built.leaves;
     }
     assert!(splits > 1000, "the trees split: {splits}");
@@ -151,9 +157,10 @@ fn parallel_build_equals_the_sequential_one() {
     assert_eq!(sequential.nodes, parallel.nodes);
     assert_eq!(sequential.ids, parallel.ids);
     assert_eq!(
-        (sequential.depth, sequential.leaves, sequential.empty_leaves),
-        (parallel.depth, parallel.leaves, parallel.empty_leaves)
+        (sequential.refs, sequential.depth, sequential.leaves),
+        (parallel.refs, parallel.depth, parallel.leaves)
     );
+    assert_eq!(sequential.empty_leaves, parallel.empty_leaves);
 }
 
 #[test]

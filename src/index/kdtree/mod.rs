@@ -2,7 +2,8 @@
 //!
 //! Build: see [`build`] (SAH with empty-space bonus over clipped-bounds events, conservative
 //! classification). Traversal: the shared near/far walk of [`crate::index::near_far`] over
-//! 8-byte nodes ([`KdNode`], its step in [`node`]); leaves index one id array.
+//! 8-byte nodes ([`KdNode`], its step in [`node`]); leaves of one primitive hold its id, the others
+//! index one id array.
 //!
 //! Why the hits match brute force: every primitive within `pad` of a plane is on both sides, the
 //! two children's parameter intervals overlap around the computed crossing, and pending nodes

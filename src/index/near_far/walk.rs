@@ -1,5 +1,6 @@
 //! The near/far traversal loop over a flat array of nodes (depth-first, the child below a plane
-//! right after its parent) and one array of primitive ids that leaves index contiguously.
+//! right after its parent) and one array of primitive ids that leaves index contiguously (a leaf
+//! of one primitive holds its id itself, so reaching its test reads no id array).
 //!
 //! Per ray: the node type's precomputation ([`SplitNode::prepare`], e.g. the inverse direction)
 //! once, then per node one [`SplitNode::step`] (one crossing or a leaf range). An interior step
@@ -25,7 +26,8 @@ use crate::scene::Geometry;
 
 /// What a node tells the walk.
 pub enum Step {
-    /// A leaf over ids `first..first + count` of the id array.
+    /// A leaf over ids `first..first + count` of the id array, or when `count == 1` over
+    /// primitive `first` itself.
     Leaf { first: u32, count: u32 },
     /// Children in ray order: `first` holds the ray up to the crossing, `second` after it;
     /// `[lo, hi]` contains the exact crossing parameter. `lo = hi = +inf` visits `first` only,
@@ -103,7 +105,13 @@ fn walk<N: SplitNode, S: Stats>(
         stats.node_visit();
         match nodes[cur.node as usize].step(cur.node, &pre) {
             Step::Leaf { first, count } => {
-                if leaf(&ids[first as usize..(first + count) as usize], stats) {
+                let one = [first];
+                let prims = if count == 1 {
+                    &one[..]
+                } else {
+                    &ids[first as usize..(first + count) as usize]
+                };
+                if leaf(prims, stats) {
                     return;
                 }
                 cur = loop {
