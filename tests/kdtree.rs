@@ -21,6 +21,8 @@ fn agrees_with_other_parameters() {
         "kdtree:intersect_cost=2.0,empty_bonus=0.0",
         "kdtree:mailbox=false",
         "kdtree:mailbox=false,max_depth=6",
+        "kdtree:bins=0",
+        "kdtree:bins=2,binned_above=8",
     ]);
 }
 
@@ -64,5 +66,6 @@ fn partition_basics_hold() {
             })
             .collect()
     };
-    assert_partition_basics::<KdTree>("kdtree", 8, leaves, &[]);
+    let bad_bins = [("bins=1", "bins"), ("bins=1025", "bins")];
+    assert_partition_basics::<KdTree>("kdtree", 8, leaves, &bad_bins);
 }

@@ -24,7 +24,7 @@ use crate::geometry::Aabb;
 use crate::geometry::clip::box_halfspace_bounds;
 use crate::geometry::polyhedron::ConvexPolyhedron;
 use crate::index::BuildError;
-use crate::index::kdtree::sweep::{Weights, best_axis_split};
+use crate::index::kdtree::sweep::{Ref, Weights, best_axis_split};
 use crate::index::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
@@ -35,13 +35,6 @@ pub(super) struct Limits {
     pub sweep: bool,
     pub axis_candidates: u32,
     pub plane_candidates: u32,
-}
-
-/// A primitive in a node and conservative bounds of its part there.
-#[derive(Debug, Clone, Copy)]
-struct Ref {
-    prim: u32,
-    b: Aabb,
 }
 
 /// A candidate plane `normal . p = offset`; `axis` when the normal is a unit axis.

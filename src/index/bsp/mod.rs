@@ -6,9 +6,9 @@
 //! within `pad` of a plane is on both sides) and the strict skip rule, hits match brute force.
 //!
 //! Build time (release, default parameters): the Stanford bunny (69,451 triangles) takes about
-//! 4.4 s on a loaded 2-core machine (7.9 MB; 7.4 s and 22 MB with pbrt's depth limit
-//! `8 + 1.3 log2 N`), about twice the time of box-area costs: every candidate cuts the cell's
-//! polyhedron.
+//! 2.1 s on a 2-core machine with other work paused (best of three; 7.9 MB; with pbrt's depth
+//! limit `8 + 1.3 log2 N` 22 MB and 1.7 times the time), about twice the time of box-area costs:
+//! every candidate cuts the cell's polyhedron.
 //! Even scored by the exact cell areas, the own planes win few splits (0.06% on the bunny, 0.04%
 //! on a 20k-triangle icosphere; see `cargo test --release --test bsp -- --nocapture`). The
 //! candidate counts, `max_depth` and `leaf_size` cap it (time grows linearly with the number of
