@@ -4,6 +4,7 @@
 mod common;
 mod partition_kit;
 
+use accelbench::index::kdtree::KdKind;
 use accelbench::index::{Index, KdTree};
 use accelbench::scene::{Scene, generators};
 use partition_kit::*;
@@ -20,6 +21,8 @@ fn agrees_with_other_parameters() {
         "kdtree:intersect_cost=2.0,empty_bonus=0.0",
         "kdtree:mailbox=false",
         "kdtree:mailbox=false,max_depth=6",
+        "kdtree:bins=0",
+        "kdtree:bins=2,binned_above=8",
     ]);
 }
 
@@ -54,5 +57,15 @@ fn degenerate_input_terminates_and_agrees() {
 /// Mailboxing, the structure figures and typed parameter errors (`partition_kit`).
 #[test]
 fn partition_basics_hold() {
-    assert_partition_basics::<KdTree>("kdtree", 8, &[]);
+    let leaves = |t: &KdTree| {
+        t.nodes()
+            .iter()
+            .filter_map(|n| match n.kind() {
+                KdKind::Leaf { first, count } => Some((first, count)),
+                KdKind::Interior { .. } => None,
+            })
+            .collect()
+    };
+    let bad_bins = [("bins=1", "bins"), ("bins=1025", "bins")];
+    assert_partition_basics::<KdTree>("kdtree", 8, leaves, &bad_bins);
 }

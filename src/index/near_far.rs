@@ -57,8 +57,15 @@ pub fn scene_pad(b: &Aabb) -> f32 {
     b.min.abs().max(b.max.abs()).max_element() * OVERLAP_PAD + f32::MIN_POSITIVE
 }
 
-/// The default maximum depth `8 + 1.3 log2 n`, capped at [`MAX_TREE_DEPTH`].
+/// The default maximum depth `3 + 1.3 log2 n`, capped at [`MAX_TREE_DEPTH`].
+///
+/// pbrt's `8 + 1.3 log2 n` lets the SAH (which with one-primitive leaves almost always finds a
+/// split cheaper than a leaf) cut empty space and straddling primitives five levels further:
+/// on the Stanford bunny 11.4 MB instead of 3.4 MB and 2.7 times the build time, for 2.5 fewer
+/// tests but no fewer node steps per ray (33.5 against 30.0 on incoherent rays) and no speed
+/// gained; on the stadium, soup and room scenes of 20,000 triangles the extra levels change
+/// neither steps nor tests per ray measurably.
 pub fn default_max_depth(n: usize) -> u32 {
-    let d = 8.0 + 1.3 * (n.max(1) as f64).log2();
+    let d = 3.0 + 1.3 * (n.max(1) as f64).log2();
     (d.round() as u32).min(MAX_TREE_DEPTH)
 }

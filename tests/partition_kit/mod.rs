@@ -228,16 +228,41 @@ pub fn assert_tests_each_primitive_once<I: Index>() {
 }
 
 /// The figures of `I` (registered as `name`, nodes of `node_bytes`, 4-byte ids) describe a full
-/// binary tree, and `max_depth=4` bounds its depth.
-pub fn assert_structure_figures<I: Index>(name: &str, node_bytes: usize) {
+/// binary tree whose leaves (`leaves(index)`: every leaf's `(first, count)`) hold every
+/// reference: a leaf of one primitive holds a primitive id itself, the others index the id
+/// array, which holds nothing else; and `max_depth=4` bounds its depth.
+pub fn assert_structure_figures<I: Index>(
+    name: &str,
+    node_bytes: usize,
+    leaves: fn(&I) -> Vec<(u32, u32)>,
+) {
     let scene = generators::generate("icosphere", 5000, 1).unwrap();
-    let info = build_on::<I>(name, &scene, "").info();
+    let index = build_on::<I>(name, &scene, "");
+    let info = index.info();
     assert_eq!(info.nodes, 2 * info.leaves - 1, "a full binary tree");
     assert!(info.prim_refs >= scene.triangles.len());
+    let leaves = leaves(&index);
+    assert_eq!(leaves.len(), info.leaves);
+    let refs: u32 = leaves.iter().map(|l| l.1).sum();
+    assert_eq!(
+        refs as usize, info.prim_refs,
+        "the leaves hold every reference"
+    );
+    let (ones, runs): (Vec<&(u32, u32)>, Vec<_>) = leaves.iter().partition(|l| l.1 == 1);
+    assert!(!ones.is_empty(), "one-primitive leaves are exercised");
+    assert!(ones.iter().all(|l| (l.0 as usize) < scene.triangles.len()));
+    let id_slots = (info.memory_bytes - info.nodes * node_bytes) / 4;
     assert_eq!(
         info.memory_bytes,
-        info.nodes * node_bytes + info.prim_refs * 4
+        info.nodes * node_bytes + id_slots * 4,
+        "nodes and 4-byte ids"
     );
+    assert_eq!(
+        id_slots,
+        runs.iter().map(|l| l.1 as usize).sum::<usize>(),
+        "the id array holds the runs of the leaves of other sizes"
+    );
+    assert!(runs.iter().all(|l| (l.0 + l.1) as usize <= id_slots));
     let depth = build_on::<I>(name, &scene, ":max_depth=4").info().depth;
     assert!(depth <= 5, "depth {depth} within max_depth=4");
 }
@@ -271,12 +296,18 @@ pub fn assert_bad_parameters(index: &str, own: &[(&str, &str)]) {
     }
 }
 
-/// What every binary space partition `I` (registered as `index`, nodes of `node_bytes`)
-/// promises: [`assert_tests_each_primitive_once`], [`assert_structure_figures`] and
-/// [`assert_bad_parameters`] with its own bad parameters `own_bad`.
-pub fn assert_partition_basics<I: Index>(index: &str, node_bytes: usize, own_bad: &[(&str, &str)]) {
+/// What every binary space partition `I` (registered as `index`, nodes of `node_bytes`, leaves
+/// listed by `leaves`) promises: [`assert_tests_each_primitive_once`],
+/// [`assert_structure_figures`] and [`assert_bad_parameters`] with its own bad parameters
+/// `own_bad`.
+pub fn assert_partition_basics<I: Index>(
+    index: &str,
+    node_bytes: usize,
+    leaves: fn(&I) -> Vec<(u32, u32)>,
+    own_bad: &[(&str, &str)],
+) {
     assert_tests_each_primitive_once::<I>();
-    assert_structure_figures::<I>(index, node_bytes);
+    assert_structure_figures::<I>(index, node_bytes, leaves);
     assert_bad_parameters(index, own_bad);
 }
 

@@ -24,7 +24,7 @@ use crate::geometry::Aabb;
 use crate::geometry::clip::box_halfspace_bounds;
 use crate::geometry::polyhedron::ConvexPolyhedron;
 use crate::index::BuildError;
-use crate::index::kdtree::sweep::{Weights, best_axis_split};
+use crate::index::kdtree::sweep::{Ref, Weights, best_axis_split};
 use crate::index::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
@@ -35,13 +35,6 @@ pub(super) struct Limits {
     pub sweep: bool,
     pub axis_candidates: u32,
     pub plane_candidates: u32,
-}
-
-/// A primitive in a node and conservative bounds of its part there.
-#[derive(Debug, Clone, Copy)]
-struct Ref {
-    prim: u32,
-    b: Aabb,
 }
 
 /// A candidate plane `normal . p = offset`; `axis` when the normal is a unit axis.
@@ -93,6 +86,7 @@ pub(super) fn build<G: Geometry>(
         out: Built {
             nodes: Vec::new(),
             ids: Vec::new(),
+            refs: 0,
             depth: 0,
             leaves: 0,
             empty_leaves: 0,
@@ -156,15 +150,23 @@ impl<G: Geometry> Builder<'_, G> {
         Ok(())
     }
 
+    /// A leaf over `refs`: one primitive is held in the node itself, more as a sorted run of
+    /// the id array.
     fn leaf(&mut self, refs: &[Ref], depth: u32) -> Result<(), BuildError> {
         let o = &mut self.out;
         if refs.len() as u64 > MAX_LINK as u64 || o.ids.len() + refs.len() > u32::MAX as usize {
             return Err(too_big());
         }
-        let first = o.ids.len();
-        o.ids.extend(refs.iter().map(|r| r.prim));
-        o.ids[first..].sort_unstable();
-        o.nodes.push(BspNode::leaf(first as u32, refs.len() as u32));
+        let node = if let [one] = refs {
+            BspNode::leaf(one.prim, 1)
+        } else {
+            let first = o.ids.len();
+            o.ids.extend(refs.iter().map(|r| r.prim));
+            o.ids[first..].sort_unstable();
+            BspNode::leaf(first as u32, refs.len() as u32)
+        };
+        o.nodes.push(node);
+        o.refs += refs.len();
         o.leaves += 1;
         o.empty_leaves += refs.is_empty() as usize;
         o.depth = o.depth.max(depth as usize + 1);

@@ -5,9 +5,10 @@
 //! Crossing of a plane: see the node's step ([`node`]). With the builder's padding (a primitive
 //! within `pad` of a plane is on both sides) and the strict skip rule, hits match brute force.
 //!
-//! Build time (one core, release, default parameters): the Stanford bunny (69,451 triangles)
-//! takes about 5.5 s on a loaded 2-core machine (0.84 M nodes, 8.5 references per triangle,
-//! 22 MB), about twice the time of box-area costs: every candidate cuts the cell's polyhedron.
+//! Build time (release, default parameters): the Stanford bunny (69,451 triangles) takes about
+//! 2.1 s on a 2-core machine with other work paused (best of three; 7.9 MB; with pbrt's depth
+//! limit `8 + 1.3 log2 N` 22 MB and 1.7 times the time), about twice the time of box-area costs:
+//! every candidate cuts the cell's polyhedron.
 //! Even scored by the exact cell areas, the own planes win few splits (0.06% on the bunny, 0.04%
 //! on a 20k-triangle icosphere; see `cargo test --release --test bsp -- --nocapture`). The
 //! candidate counts, `max_depth` and `leaf_size` cap it (time grows linearly with the number of
@@ -44,7 +45,7 @@ pub struct BspParams {
     /// linearly with `3 * axis_candidates + plane_candidates` (at most 1024; at least 1
     /// without `sweep`).
     pub plane_candidates: u32,
-    /// Deepest level (root = 0); absent: `8 + 1.3 log2 N`. At most 64.
+    /// Deepest level (root = 0); absent: `3 + 1.3 log2 N`. At most 64.
     pub max_depth: Option<u32>,
     /// Nodes with at most this many primitives become leaves (at least 1).
     pub leaf_size: u32,

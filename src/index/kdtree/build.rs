@@ -14,11 +14,18 @@
 //! `pad` of the plane (touching it, lying in it, or rounding near it) is stored on both sides.
 //! A primitive stored on both sides is clipped again to each child's cell (grown by `pad`).
 //!
+//! Nodes with more references than [`Binning::above`] choose their plane among bin boundaries
+//! instead ([`super::binned`]); they carry their references and clipped bounds, not event lists,
+//! and the first node at or below that size (or where no bin boundary beats a leaf) sorts its
+//! references' events once for its whole subtree.
+//!
 //! The tree is the one a per-node sort of the same events gives (the test module keeps that
-//! builder as an oracle and compares the trees node for node).
+//! builder as an oracle, binning the same nodes, and compares the trees node for node). The
+//! parallel top of the build is in [`super::parallel`].
 
+use super::binned::Bins;
 use super::node::{KdNode, MAX_PAYLOAD};
-use super::sweep::{Event, MAX_ITEM, Weights, best_split_sorted, push_events};
+use super::sweep::{Event, Ref, Weights, best_split_sorted, push_events};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
 use crate::index::near_far::{Built, SahParams};
@@ -28,7 +35,7 @@ use glam::Vec3A;
 /// The events of a node's primitives on each axis, each list sorted by [`Event::order`]; the
 /// items are primitive ids (a primitive is at most once in a node), and every primitive of the
 /// node has exactly one start and one end event per axis.
-type Events = [Vec<Event>; 3];
+pub(super) type Events = [Vec<Event>; 3];
 
 /// Where a node's primitive goes at the chosen plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,156 +45,76 @@ enum Side {
     Both,
 }
 
-struct Builder<'a, G: Geometry> {
+/// The sequential builder: the nodes of one subtree depth-first, and scratch space.
+pub(super) struct Builder<'a, G: Geometry> {
     geom: &'a G,
     costs: &'a SahParams,
+    binning: Binning,
     pad: f32,
     nodes: Vec<KdNode>,
     ids: Vec<u32>,
+    /// References over all leaves so far.
+    refs: usize,
     /// Scratch, by primitive id: the side of each primitive of the node being split.
     side: Vec<Side>,
     /// Scratch: the primitives of the node being split that go to both sides.
     straddling: Vec<u32>,
     /// Event lists no node uses any more, kept for their allocations (cleared when taken).
     pool: Vec<Vec<Event>>,
+    /// Scratch of the binned nodes.
+    bins: Bins,
     depth: usize,
     leaves: usize,
     empty_leaves: usize,
 }
 
-/// Builds the tree over all primitives of `geom` in the cell `root` (their bounds), with
-/// classification padding `pad` (world units, > 0).
-pub(super) fn build<G: Geometry>(
-    geom: &G,
-    root: Aabb,
-    pad: f32,
-    costs: &SahParams,
-) -> Result<Built<KdNode>, BuildError> {
-    if geom.len() > MAX_ITEM as usize {
-        return Err(too_big("primitives"));
-    }
-    let events = root_events(geom, pad);
-    subtree(geom, costs, pad, events, geom.len(), root, 0, PARALLEL)
-}
-
-/// The sorted events of all primitives' bounds (grown by `pad`).
-fn root_events<G: Geometry>(geom: &G, pad: f32) -> Events {
-    let n = geom.len();
-    let mut events: Events = std::array::from_fn(|_| Vec::with_capacity(2 * n));
-    for prim in 0..n as u32 {
-        push_events(&mut events, &geom.bounds(prim), pad, prim);
-    }
-    for list in &mut events {
-        list.sort_unstable_by(Event::order);
-    }
-    events
-}
-
-/// Which nodes build their two children in parallel (`rayon::join`): those of the top `levels`
-/// levels with at least `min_prims` primitives.
+/// Which nodes choose their plane by binned SAH: those with more than `above` references, among
+/// `bins` slabs per axis (`bins == 0`: none, every plane is a perfect split).
 #[derive(Debug, Clone, Copy)]
-struct Parallel {
-    levels: u32,
-    min_prims: usize,
+pub(super) struct Binning {
+    pub bins: usize,
+    pub above: usize,
 }
 
-/// Up to `2^6` tasks, enough to keep a few cores busy while the sequential subtrees stay large.
-const PARALLEL: Parallel = Parallel {
-    levels: 6,
-    min_prims: 2048,
-};
-
-/// Builds the subtree of `cell` over the `n` primitives with events `events` (`depth` of its
-/// root), splitting the work into two `rayon::join` tasks as `par` says. The tree
-/// is the one the sequential [`Builder::node`] makes: the same choices, the same depth-first
-/// layout ([`join_subtrees`] only shifts the links of each part).
-#[allow(clippy::too_many_arguments)]
-fn subtree<G: Geometry>(
-    geom: &G,
-    costs: &SahParams,
-    pad: f32,
-    events: Events,
-    n: usize,
-    cell: Aabb,
-    depth: u32,
-    par: Parallel,
-) -> Result<Built<KdNode>, BuildError> {
-    let mut b = Builder {
-        geom,
-        costs,
-        pad,
-        nodes: Vec::new(),
-        ids: Vec::new(),
-        side: vec![Side::Both; geom.len()],
-        straddling: Vec::new(),
-        pool: Vec::new(),
-        depth: 0,
-        leaves: 0,
-        empty_leaves: 0,
-    };
-    let split = (par.levels > 0 && n >= par.min_prims)
-        .then(|| b.choose(&events, n, &cell, depth))
-        .flatten();
-    let Some((axis, s)) = split else {
-        b.node(events, n, cell, depth)?;
-        return Ok(Built {
-            nodes: b.nodes,
-            ids: b.ids,
-            depth: b.depth,
-            leaves: b.leaves,
-            empty_leaves: b.empty_leaves,
-            extra: Vec::new(),
-        });
-    };
-    let (below_cell, above_cell) = split_cell(&cell, axis, s);
-    let ((below, nb), (above, na)) = b.partition(events, axis, s, &below_cell, &above_cell);
-    drop(b);
-    let par = Parallel {
-        levels: par.levels - 1,
-        ..par
-    };
-    let part = |events, n, cell| subtree(geom, costs, pad, events, n, cell, depth + 1, par);
-    let (below, above) = rayon::join(
-        || part(below, nb, below_cell),
-        || part(above, na, above_cell),
-    );
-    join_subtrees(axis, s, below?, above?)
+/// A node's references: with their clipped bounds (a binned node), or as sorted events.
+pub(super) enum Input {
+    Refs(Vec<Ref>),
+    Events(Events),
 }
 
-/// The tree of an interior node on `axis` at `s` over its two built subtrees: the node, then
-/// the subtree below (links shifted by one node), then the one above (links shifted by the
-/// nodes and ids before it).
-fn join_subtrees(
-    axis: usize,
-    s: f32,
-    below: Built<KdNode>,
-    above: Built<KdNode>,
-) -> Result<Built<KdNode>, BuildError> {
-    let above_at = 1 + below.nodes.len();
-    if (above_at + above.nodes.len()) as u64 > MAX_PAYLOAD as u64 + 1 {
-        return Err(too_big("nodes"));
+/// A node's fate: a leaf over the primitives of these events, or a plane and its children's
+/// references, counts and cells.
+pub(super) enum Split {
+    Leaf(Events),
+    Node {
+        axis: usize,
+        s: f32,
+        below: (Input, usize, Aabb),
+        above: (Input, usize, Aabb),
+    },
+}
+
+/// The references of all primitives of `geom` (their whole bounds) when the root is binned,
+/// else their sorted events (grown by `pad`).
+pub(super) fn root_input<G: Geometry>(geom: &G, pad: f32, binning: Binning) -> Input {
+    let refs = (0..geom.len() as u32).map(|prim| Ref {
+        prim,
+        b: geom.bounds(prim),
+    });
+    if binning.bins > 0 && geom.len() > binning.above {
+        Input::Refs(refs.collect())
+    } else {
+        let n = geom.len();
+        let mut events: Events = std::array::from_fn(|_| Vec::with_capacity(2 * n));
+        refs.for_each(|r| push_events(&mut events, &r.b, pad, r.prim));
+        for list in &mut events {
+            list.sort_unstable_by(Event::order);
+        }
+        Input::Events(events)
     }
-    if below.ids.len() + above.ids.len() > u32::MAX as usize {
-        return Err(too_big("primitive references"));
-    }
-    let mut nodes = Vec::with_capacity(above_at + above.nodes.len());
-    nodes.push(KdNode::interior(axis, s, above_at as u32));
-    nodes.extend(below.nodes.iter().map(|n| n.shifted(1, 0)));
-    let (node_shift, id_shift) = (above_at as u32, below.ids.len() as u32);
-    nodes.extend(above.nodes.iter().map(|n| n.shifted(node_shift, id_shift)));
-    let mut ids = below.ids;
-    ids.extend(above.ids);
-    Ok(Built {
-        nodes,
-        ids,
-        depth: below.depth.max(above.depth),
-        leaves: below.leaves + above.leaves,
-        empty_leaves: below.empty_leaves + above.empty_leaves,
-        extra: Vec::new(),
-    })
 }
 
-fn too_big(what: &str) -> BuildError {
+pub(super) fn too_big(what: &str) -> BuildError {
     BuildError::Failed {
         index: "kdtree".into(),
         message: format!(
@@ -196,26 +123,154 @@ fn too_big(what: &str) -> BuildError {
     }
 }
 
-impl<G: Geometry> Builder<'_, G> {
-    /// Builds the subtree of `cell` over the `n` primitives with events `events`.
-    fn node(&mut self, events: Events, n: usize, cell: Aabb, depth: u32) -> Result<(), BuildError> {
+impl<'a, G: Geometry> Builder<'a, G> {
+    /// An empty builder.
+    pub fn new(geom: &'a G, costs: &'a SahParams, binning: Binning, pad: f32) -> Self {
+        Builder {
+            geom,
+            costs,
+            binning,
+            pad,
+            nodes: Vec::new(),
+            ids: Vec::new(),
+            refs: 0,
+            side: vec![Side::Both; geom.len()],
+            straddling: Vec::new(),
+            pool: Vec::new(),
+            bins: Bins::default(),
+            depth: 0,
+            leaves: 0,
+            empty_leaves: 0,
+        }
+    }
+
+    /// The nodes and figures built so far.
+    pub fn into_built(self) -> Built<KdNode> {
+        Built {
+            nodes: self.nodes,
+            ids: self.ids,
+            refs: self.refs,
+            depth: self.depth,
+            leaves: self.leaves,
+            empty_leaves: self.empty_leaves,
+            extra: Vec::new(),
+        }
+    }
+
+    /// Builds the subtree of `cell` over its `n` references `input`, depth-first.
+    pub fn node(
+        &mut self,
+        input: Input,
+        n: usize,
+        cell: Aabb,
+        depth: u32,
+    ) -> Result<(), BuildError> {
         let at = self.nodes.len();
         if at as u64 > MAX_PAYLOAD as u64 {
             return Err(too_big("nodes"));
         }
-        let Some((axis, s)) = self.choose(&events, n, &cell, depth) else {
-            let leaf = self.leaf(&events[0], depth);
-            self.pool.extend(events);
-            return leaf;
+        match self.split(input, n, cell, depth) {
+            Split::Leaf(events) => self.leaf(events, depth),
+            Split::Node {
+                axis,
+                s,
+                below,
+                above,
+            } => {
+                self.nodes.push(KdNode::leaf(0, 0)); // placeholder, patched below
+                self.node(below.0, below.1, below.2, depth + 1)?;
+                let above_at = self.nodes.len() as u32;
+                self.node(above.0, above.1, above.2, depth + 1)?;
+                self.nodes[at] = KdNode::interior(axis, s, above_at);
+                Ok(())
+            }
+        }
+    }
+
+    /// Chooses the node's plane (binned for a large node, else the exact sweep) and splits
+    /// its references, or makes it a leaf.
+    pub fn split(&mut self, input: Input, n: usize, cell: Aabb, depth: u32) -> Split {
+        let events = match input {
+            Input::Refs(refs) => {
+                let c = self.costs;
+                let open = n as u32 > c.leaf_size && depth < c.max_depth;
+                let b = self.binning;
+                let plane = (open && b.bins > 0 && n > b.above)
+                    .then(|| {
+                        let w = Weights::from(c);
+                        self.bins.best_split(&refs, &cell, self.pad, &w, b.bins)
+                    })
+                    .flatten();
+                let Some((axis, s)) = plane else {
+                    let events = self.events_of(&refs);
+                    return self.split(Input::Events(events), n, cell, depth);
+                };
+                let (bc, ac) = split_cell(&cell, axis, s);
+                let (below, above) = self.split_refs(refs, axis, s, &bc, &ac);
+                let (nb, na) = (below.len(), above.len());
+                return Split::Node {
+                    axis,
+                    s,
+                    below: (Input::Refs(below), nb, bc),
+                    above: (Input::Refs(above), na, ac),
+                };
+            }
+            Input::Events(events) => events,
         };
-        let (below_cell, above_cell) = split_cell(&cell, axis, s);
-        let ((below, nb), (above, na)) = self.partition(events, axis, s, &below_cell, &above_cell);
-        self.nodes.push(KdNode::leaf(0, 0)); // placeholder, patched below
-        self.node(below, nb, below_cell, depth + 1)?;
-        let above_at = self.nodes.len() as u32;
-        self.node(above, na, above_cell, depth + 1)?;
-        self.nodes[at] = KdNode::interior(axis, s, above_at);
-        Ok(())
+        let Some((axis, s)) = self.choose(&events, n, &cell, depth) else {
+            return Split::Leaf(events);
+        };
+        let (bc, ac) = split_cell(&cell, axis, s);
+        let ((below, nb), (above, na)) = self.partition(events, axis, s, &bc, &ac);
+        Split::Node {
+            axis,
+            s,
+            below: (Input::Events(below), nb, bc),
+            above: (Input::Events(above), na, ac),
+        }
+    }
+
+    /// The sorted events of `refs` (their bounds grown by `pad`).
+    fn events_of(&mut self, refs: &[Ref]) -> Events {
+        let mut events: Events = std::array::from_fn(|_| self.take(2 * refs.len()));
+        for r in refs {
+            push_events(&mut events, &r.b, self.pad, r.prim);
+        }
+        for list in &mut events {
+            list.sort_unstable_by(Event::order);
+        }
+        events
+    }
+
+    /// Sends each reference to its side(s) of the plane at `s` on `axis`, as [`Self::partition`]
+    /// does with events; one on both sides is clipped again to each child's cell (grown by
+    /// `pad`).
+    pub fn split_refs(
+        &self,
+        refs: Vec<Ref>,
+        axis: usize,
+        s: f32,
+        below_cell: &Aabb,
+        above_cell: &Aabb,
+    ) -> (Vec<Ref>, Vec<Ref>) {
+        let pad = Vec3A::splat(self.pad);
+        let grow = |c: &Aabb| Aabb::new(c.min - pad, c.max + pad);
+        let (bclip, aclip) = (grow(below_cell), grow(above_cell));
+        let (mut below, mut above) = (Vec::new(), Vec::new());
+        for r in refs {
+            let to_above = r.b.max[axis] + self.pad > s;
+            let to_below = r.b.min[axis] - self.pad < s || !to_above;
+            match (to_below, to_above) {
+                (true, true) => {
+                    let clipped = |c: &Aabb| self.clip(r.prim, c).map(|b| Ref { prim: r.prim, b });
+                    below.extend(clipped(&bclip));
+                    above.extend(clipped(&aclip));
+                }
+                (true, false) => below.push(r),
+                _ => above.push(r),
+            }
+        }
+        (below, above)
     }
 
     /// The plane `(axis, position)` that splits the node, or `None` for a leaf.
@@ -226,18 +281,25 @@ impl<G: Geometry> Builder<'_, G> {
         best_split_sorted(events, n, cell, &Weights::from(self.costs)).map(|(a, s, _)| (a, s))
     }
 
-    /// A leaf over the primitives whose start events are in `events` (one axis's list).
-    fn leaf(&mut self, events: &[Event], depth: u32) -> Result<(), BuildError> {
-        let count = events.len() / 2;
+    /// A leaf over the primitives of `events`: one primitive is held in the node itself, more
+    /// as a sorted run of the id array.
+    pub fn leaf(&mut self, events: Events, depth: u32) -> Result<(), BuildError> {
+        let count = events[0].len() / 2;
         if count as u64 > MAX_PAYLOAD as u64 || self.ids.len() + count > u32::MAX as usize {
             return Err(too_big("primitive references"));
         }
-        let first = self.ids.len() as u32;
-        let start = self.ids.len();
-        self.ids
-            .extend(events.iter().filter(|e| e.is_start()).map(Event::item));
-        self.ids[start..].sort_unstable();
-        self.nodes.push(KdNode::leaf(first, count as u32));
+        let mut starts = events[0].iter().filter(|e| e.is_start()).map(Event::item);
+        let node = if count == 1 {
+            KdNode::leaf(starts.next().unwrap_or_default(), 1)
+        } else {
+            let start = self.ids.len();
+            self.ids.extend(starts);
+            self.ids[start..].sort_unstable();
+            KdNode::leaf(start as u32, count as u32)
+        };
+        self.nodes.push(node);
+        self.pool.extend(events);
+        self.refs += count;
         self.leaves += 1;
         self.empty_leaves += (count == 0) as usize;
         self.depth = self.depth.max(depth as usize + 1);
@@ -359,7 +421,7 @@ fn merge_into(list: &mut Vec<Event>, new: &[Event]) {
 }
 
 /// The two children of `cell` split at `s` on `axis`.
-fn split_cell(cell: &Aabb, axis: usize, s: f32) -> (Aabb, Aabb) {
+pub(super) fn split_cell(cell: &Aabb, axis: usize, s: f32) -> (Aabb, Aabb) {
     let (mut below, mut above) = (*cell, *cell);
     below.max[axis] = s;
     above.min[axis] = s;

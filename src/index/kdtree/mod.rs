@@ -1,8 +1,10 @@
 //! The SAH kd-tree (axis-aligned BSP) with perfect splits and near/far traversal.
 //!
-//! Build: see [`build`] (SAH with empty-space bonus over clipped-bounds events, conservative
-//! classification). Traversal: the shared near/far walk of [`crate::index::near_far`] over
-//! 8-byte nodes ([`KdNode`], its step in [`node`]); leaves index one id array.
+//! Build: SAH with empty-space bonus and conservative classification; nodes with more than
+//! `binned_above` references choose among bin boundaries ([`binned`]), the others among all
+//! perfect splits by a sweep over sorted events ([`build`]). Traversal: the shared near/far walk
+//! of [`crate::index::near_far`] over 8-byte nodes ([`KdNode`], its step in [`node`]); leaves
+//! of one primitive hold its id, the others index one id array.
 //!
 //! Why the hits match brute force: every primitive within `pad` of a plane is on both sides, the
 //! two children's parameter intervals overlap around the computed crossing, and pending nodes
@@ -11,14 +13,17 @@
 //! [`Geometry`] contract clamps `t` into the slab interval of its bounds, computed with the same
 //! formula), so ties on a split plane are resolved by id as brute force does.
 //!
-//! Build: with the default parameters the Stanford bunny (69,451 triangles) gives 1.15 M nodes,
-//! 8.7 references per triangle, 11.6 MB. Most of the time is the sweeps and the clipping of
-//! straddling triangles; the children of the top six levels are built in parallel
-//! (`rayon::join`) into separate arrays joined by shifting their links, so the tree is the one
-//! the sequential build makes (tested node for node).
+//! Build figures: with the default parameters the Stanford bunny (69,451 triangles) gives a
+//! 3.3 MB tree (pbrt's depth limit `8 + 1.3 log2 N` gave 11.4 MB, see
+//! [`crate::index::near_far::default_max_depth`]). Most of the time is the clipping of
+//! straddling triangles, the partition of the event lists and the sweeps; the children of the
+//! top six levels are built in parallel ([`parallel`]) into separate arrays joined by shifting
+//! their links, so the tree is the one the sequential build makes (tested node for node).
 
+mod binned;
 mod build;
 mod node;
+mod parallel;
 pub(crate) mod sweep;
 
 pub use node::{KdKind, KdNode};
@@ -41,13 +46,19 @@ pub struct KdParams {
     pub traversal_cost: f32,
     /// Fraction of the cost saved by a split that cuts off an empty child, in `[0, 1)`.
     pub empty_bonus: f32,
-    /// Deepest level (root = 0); absent: `8 + 1.3 log2 N`. At most 64.
+    /// Deepest level (root = 0); absent: `3 + 1.3 log2 N`. At most 64.
     pub max_depth: Option<u32>,
     /// Nodes with at most this many primitives become leaves (at least 1).
     pub leaf_size: u32,
     /// Test each primitive at most once per ray (a per-thread stamp per primitive); without
     /// it a primitive in several leaves the ray visits is tested again (same hits).
     pub mailbox: bool,
+    /// Slabs per axis whose boundaries are the candidate planes of the nodes with more than
+    /// `binned_above` references (`2..=1024`); 0: every node takes the exact SAH over all
+    /// perfect splits (Wald & Havran's tree).
+    pub bins: u32,
+    /// Nodes with more references than this are split by binned SAH (when `bins > 0`).
+    pub binned_above: u32,
 }
 
 impl Default for KdParams {
@@ -59,6 +70,8 @@ impl Default for KdParams {
             max_depth: None,
             leaf_size: 1,
             mailbox: true,
+            bins: 32,
+            binned_above: 128,
         }
     }
 }
@@ -84,7 +97,21 @@ impl Partition for KdNode {
             p.leaf_size,
             geom.len(),
         )?;
-        build::build(geom, root, pad, &sah)
+        if p.bins == 1 || p.bins > binned::MAX_BINS {
+            return Err(BuildError::Params {
+                index: Self::NAME.into(),
+                message: format!(
+                    "bins must be 0 or in 2..={}, got {}",
+                    binned::MAX_BINS,
+                    p.bins
+                ),
+            });
+        }
+        let binning = build::Binning {
+            bins: p.bins as usize,
+            above: p.binned_above as usize,
+        };
+        parallel::build(geom, root, pad, &sah, binning)
     }
 
     fn mailbox(params: &KdParams) -> bool {

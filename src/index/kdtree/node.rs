@@ -8,7 +8,8 @@ use crate::index::near_far::{AxisRay, SplitNode, Step, axis_step};
 /// `tag` holds the kind in its low 2 bits (`0..=2`: interior split on that axis, `3`: leaf) and a
 /// 30-bit payload above them: the index of the child above the plane for an interior node (the
 /// child below is the next node, depth-first order), the primitive count for a leaf.
-/// `data` is the split position (the bits of an `f32`) or the leaf's first slot in the id array.
+/// `data` is the split position (the bits of an `f32`), a leaf's first slot in the id array, or
+/// for a leaf of one primitive that primitive's id (no id array read on the way to its test).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub struct KdNode {
@@ -29,7 +30,8 @@ pub enum KdKind {
 }
 
 impl KdNode {
-    /// A leaf over ids `first..first + count` of the id array (`count <= MAX_PAYLOAD`).
+    /// A leaf over ids `first..first + count` of the id array (`count <= MAX_PAYLOAD`), or when
+    /// `count == 1` over primitive `first` itself.
     pub fn leaf(first: u32, count: u32) -> KdNode {
         debug_assert!(count <= MAX_PAYLOAD);
         KdNode {
@@ -52,6 +54,7 @@ impl KdNode {
     /// `ids` further on (for joining subtrees built apart).
     pub fn shifted(&self, nodes: u32, ids: u32) -> KdNode {
         match self.kind() {
+            KdKind::Leaf { first, count: 1 } => KdNode::leaf(first, 1),
             KdKind::Leaf { first, count } => KdNode::leaf(first + ids, count),
             KdKind::Interior { axis, split, above } => KdNode::interior(axis, split, above + nodes),
         }
@@ -82,7 +85,7 @@ impl SplitNode for KdNode {
         AxisRay::new(ray)
     }
 
-    /// A leaf's range, or the crossing of the node's plane by [`axis_step`].
+    /// A leaf's range (or its one primitive), or the crossing of the node's plane by [`axis_step`].
     #[inline(always)]
     fn step(&self, at: u32, ray: &AxisRay) -> Step {
         let payload = self.tag >> 2;

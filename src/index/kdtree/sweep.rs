@@ -28,6 +28,14 @@ impl From<&SahParams> for Weights {
 /// Largest item number an [`Event`] holds.
 pub(crate) const MAX_ITEM: u32 = (1 << 31) - 1;
 
+/// A primitive in a node and conservative bounds of its part there (not grown by the builder's
+/// padding).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ref {
+    pub prim: u32,
+    pub b: Aabb,
+}
+
 /// A bound of a reference projected on one axis: its position (the box face grown by the
 /// builder's `pad`), the item it belongs to (a primitive id or a reference's index, at most
 /// [`MAX_ITEM`]) and whether the reference starts or ends there.
@@ -103,13 +111,10 @@ pub(crate) fn best_split_sorted(
     }
     let mut best: Option<(usize, f32, f32)> = None;
     let mut best_cost = w.intersect * n as f32;
-    let e = cell.extent();
     for (axis, events) in events.iter().enumerate() {
-        let (lo, hi) = (cell.min[axis], cell.max[axis]);
-        if hi <= lo {
+        let Some(plane) = PlaneCost::new(cell, axis, area, w) else {
             continue;
-        }
-        let (e1, e2) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
+        };
         // Sweep: below(s) = starts before s, above(s) = ends after s.
         let (mut n_below, mut n_above) = (0usize, n);
         let mut i = 0;
@@ -125,28 +130,69 @@ pub(crate) fn best_split_sorted(
                 i += 1;
             }
             n_above -= ends;
-            if s > lo && s < hi {
-                let cap = e1 * e2;
-                let side = e1 + e2;
-                let a_below = 2.0 * (cap + (s - lo) * side);
-                let a_above = 2.0 * (cap + (hi - s) * side);
-                let bonus = if n_below == 0 || n_above == 0 {
-                    1.0 - w.empty_bonus
-                } else {
-                    1.0
-                };
-                let cost = w.traversal
-                    + w.intersect * bonus * (a_below * n_below as f32 + a_above * n_above as f32)
-                        / area;
-                if cost < best_cost {
-                    best_cost = cost;
-                    best = Some((axis, s, cost));
-                }
+            if let Some(cost) = plane.cost(s, n_below, n_above)
+                && cost < best_cost
+            {
+                best_cost = cost;
+                best = Some((axis, s, cost));
             }
             n_below += starts;
         }
     }
     best
+}
+
+/// The SAH cost of the planes across one axis of a cell: `traversal + intersect * bonus *
+/// (A(below) n_below + A(above) n_above) / A(cell)`, with `bonus = 1 - empty_bonus` when a side
+/// is empty.
+pub(crate) struct PlaneCost {
+    lo: f32,
+    hi: f32,
+    /// Twice the area of a face across the axis, and twice the perimeter of such a face.
+    cap: f32,
+    side: f32,
+    area: f32,
+    w: Weights,
+}
+
+impl PlaneCost {
+    /// The costs across `axis` of `cell` (surface area `area > 0`); `None` when the cell is flat
+    /// on that axis.
+    #[inline]
+    pub fn new(cell: &Aabb, axis: usize, area: f32, w: &Weights) -> Option<PlaneCost> {
+        let (lo, hi) = (cell.min[axis], cell.max[axis]);
+        let e = cell.extent();
+        let (e1, e2) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
+        (hi > lo).then_some(PlaneCost {
+            lo,
+            hi,
+            cap: 2.0 * e1 * e2,
+            side: 2.0 * (e1 + e2),
+            area,
+            w: *w,
+        })
+    }
+
+    /// The cost of the plane at `s` with `n_below` and `n_above` references on its sides;
+    /// `None` unless `s` lies strictly inside the cell.
+    #[inline]
+    pub fn cost(&self, s: f32, n_below: usize, n_above: usize) -> Option<f32> {
+        if !(s > self.lo && s < self.hi) {
+            return None;
+        }
+        let a_below = self.cap + (s - self.lo) * self.side;
+        let a_above = self.cap + (self.hi - s) * self.side;
+        let bonus = if n_below == 0 || n_above == 0 {
+            1.0 - self.w.empty_bonus
+        } else {
+            1.0
+        };
+        Some(
+            self.w.traversal
+                + self.w.intersect * bonus * (a_below * n_below as f32 + a_above * n_above as f32)
+                    / self.area,
+        )
+    }
 }
 
 /// [`best_split_sorted`] for `n` references with conservative boxes `bounds(i)` (grown by

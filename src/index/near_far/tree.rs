@@ -31,10 +31,13 @@ pub trait Partition: SplitNode {
 }
 
 /// A builder's output: depth-first nodes (the child below a plane right after its parent), the
-/// id array, and figures for reports.
+/// id array of the leaves of more than one primitive, and figures for reports.
 pub struct Built<N> {
     pub nodes: Vec<N>,
     pub ids: Vec<u32>,
+    /// Primitive references over all leaves (a one-primitive leaf holds its id in the node,
+    /// not in `ids`).
+    pub refs: usize,
     pub depth: usize,
     pub leaves: usize,
     pub empty_leaves: usize,
@@ -47,6 +50,7 @@ pub struct Built<N> {
 pub struct NearFarIndex<N> {
     nodes: Vec<N>,
     ids: Vec<u32>,
+    refs: usize,
     bounds: Aabb,
     prims: usize,
     /// Whether queries keep a mailbox ([`Partition::mailbox`]).
@@ -92,6 +96,7 @@ impl<N: Partition> Index for NearFarIndex<N> {
         Ok(NearFarIndex {
             nodes: built.nodes,
             ids: built.ids,
+            refs: built.refs,
             bounds,
             prims: geom.len(),
             mailbox: N::mailbox(params),
@@ -132,7 +137,7 @@ impl<N: Partition> Index for NearFarIndex<N> {
             ("empty_leaves".into(), self.empty_leaves as f64),
             (
                 "refs_per_prim".into(),
-                self.ids.len() as f64 / self.prims.max(1) as f64,
+                self.refs as f64 / self.prims.max(1) as f64,
             ),
         ];
         extra.extend(self.extra.iter().cloned());
@@ -142,7 +147,7 @@ impl<N: Partition> Index for NearFarIndex<N> {
             depth: self.depth,
             memory_bytes: self.nodes.capacity() * size_of::<N>()
                 + self.ids.capacity() * size_of::<u32>(),
-            prim_refs: self.ids.len(),
+            prim_refs: self.refs,
             extra,
             ..IndexInfo::default()
         }

@@ -1,14 +1,16 @@
 //! The near/far traversal loop over a flat array of nodes (depth-first, the child below a plane
-//! right after its parent) and one array of primitive ids that leaves index contiguously.
+//! right after its parent) and one array of primitive ids that leaves index contiguously (a leaf
+//! of one primitive holds its id itself, so reaching its test reads no id array).
 //!
 //! Per ray: the node type's precomputation ([`SplitNode::prepare`], e.g. the inverse direction)
-//! once, then per node one [`SplitNode::step`] (one crossing or a leaf range), one compare per
-//! child and at most one push of a `(node, t0, t1)` span on a fixed stack on the call stack
-//! (never zeroed, never allocated). The interior step has no branch on the ray's side of the
-//! plane: the far span is written on the stack and kept only when both children are visited,
-//! and the next node is a select (those branches are the ones a predictor misses). After a
-//! leaf, pending spans that start strictly after the best hit are dropped as they are popped, so
-//! the walk ends as soon as the best hit lies before every pending span.
+//! once, then per node one [`SplitNode::step`] (one crossing or a leaf range). An interior step
+//! asks the cache for the second child's node at once (it is visited later, or next when the
+//! ray passes the plane before the node's span), branches only on "second child only" (the
+//! near child is the usual next node, so the next load starts before the crossing is compared),
+//! and writes the far `(node, t0, t1)` span on a fixed stack on the call stack (never zeroed,
+//! never allocated), kept by a flag rather than a branch. After a leaf, pending spans that
+//! start strictly after the best hit are dropped as they are popped, so the walk ends as soon
+//! as the best hit lies before every pending span.
 //!
 //! Mailboxing is a choice of the index (`MAILBOX`): without it a primitive referenced by
 //! several leaves may be tested again on one ray, which returns the same `t` and so the same
@@ -17,13 +19,15 @@
 use super::MAX_TREE_DEPTH;
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::index::Stats;
+use crate::index::bvh::walk::prefetch;
 use crate::index::mailbox::{Mailbox, with_mailbox};
 use crate::index::stack::Stack;
 use crate::scene::Geometry;
 
 /// What a node tells the walk.
 pub enum Step {
-    /// A leaf over ids `first..first + count` of the id array.
+    /// A leaf over ids `first..first + count` of the id array, or when `count == 1` over
+    /// primitive `first` itself.
     Leaf { first: u32, count: u32 },
     /// Children in ray order: `first` holds the ray up to the crossing, `second` after it;
     /// `[lo, hi]` contains the exact crossing parameter. `lo = hi = +inf` visits `first` only,
@@ -101,7 +105,13 @@ fn walk<N: SplitNode, S: Stats>(
         stats.node_visit();
         match nodes[cur.node as usize].step(cur.node, &pre) {
             Step::Leaf { first, count } => {
-                if leaf(&ids[first as usize..(first + count) as usize], stats) {
+                let one = [first];
+                let prims = if count == 1 {
+                    &one[..]
+                } else {
+                    &ids[first as usize..(first + count) as usize]
+                };
+                if leaf(prims, stats) {
                     return;
                 }
                 cur = loop {
@@ -118,19 +128,22 @@ fn walk<N: SplitNode, S: Stats>(
                 lo,
                 hi,
             } => {
-                // `lo <= hi` and `t0 <= t1`, so at least one child is visited; when the near
-                // one is not (`hi < t0`), `max(t0, lo) = t0`: the next span starts at `t0`
-                // either way, and ends at `min(t1, hi)` for the near child, `t1` for the far.
-                let near = hi >= cur.t0;
-                let far = Span {
-                    node: second,
-                    t0: max(cur.t0, lo),
-                    t1: cur.t1,
-                };
-                stack.push_if(far, near & (lo <= cur.t1));
-                let pick_first = (near as u32).wrapping_neg();
-                cur.node = second ^ ((first ^ second) & pick_first);
-                cur.t1 = min(cur.t1, if near { hi } else { f32::INFINITY });
+                prefetch(nodes.as_ptr().wrapping_add(second as usize));
+                // `lo <= hi` and `t0 <= t1`, so at least one child is visited. The near one is
+                // not when `hi < t0` (then `max(t0, lo) = t0`: the far span is the current one);
+                // else the far one is kept when `lo <= t1`.
+                if hi < cur.t0 {
+                    cur.node = second;
+                } else {
+                    let far = Span {
+                        node: second,
+                        t0: max(cur.t0, lo),
+                        t1: cur.t1,
+                    };
+                    stack.push_if(far, lo <= cur.t1);
+                    cur.node = first;
+                    cur.t1 = min(cur.t1, hi);
+                }
             }
         }
     }
