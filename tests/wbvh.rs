@@ -1,6 +1,6 @@
 //! The wide BVHs (`bvh4`, `bvh8`) beyond the generic agreement test: with leaves of every size
-//! up to 8 and nodes of every width from 2 to 8 present, with spatial splits (primitives in
-//! several leaves), and on small corner scenes, they return brute force's hits bit for bit.
+//! up to 8 and nodes of every width from 2 to 8 present, and on small corner scenes, they
+//! return brute force's hits bit for bit.
 
 mod common;
 
@@ -53,10 +53,6 @@ fn specs() -> Vec<String> {
         }
         s.push(format!("{name}:preset=\"sweep\""));
         s.push(format!("{name}:leaf_size=8,cost_ratio=100.0"));
-        s.push(format!("{name}:spatial_splits=true,leaf_size=1"));
-        s.push(format!(
-            "{name}:spatial_splits=true,leaf_size=8,cost_ratio=100.0"
-        ));
     }
     s
 }
