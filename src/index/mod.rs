@@ -18,6 +18,7 @@ pub mod mailbox;
 pub mod near_far;
 pub mod obvhs_peer;
 pub mod octree;
+pub mod prefetch;
 pub mod prim_test;
 pub mod query;
 mod registry;

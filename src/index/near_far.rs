@@ -20,7 +20,7 @@ mod tree;
 mod walk;
 
 pub use axis::{AxisRay, axis_step};
-pub use tree::{Built, NearFarIndex, Partition, SahParams};
+pub use tree::{BuildResult, Built, NearFarIndex, Partition, SahParams};
 pub use walk::{SplitNode, Step};
 
 use super::BuildError;

@@ -20,7 +20,7 @@ mod node;
 pub use node::{BspKind, BspNode};
 
 use super::BuildError;
-use super::near_far::{Built, NearFarIndex, Partition, SahParams};
+use super::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::geometry::Aabb;
 use crate::scene::Geometry;
 use glam::Vec3A;
@@ -106,12 +106,7 @@ impl Partition for BspNode {
     const NAME: &'static str = "bsp";
     type Params = BspParams;
 
-    fn build<G: Geometry>(
-        geom: &G,
-        params: &BspParams,
-        root: Aabb,
-        pad: f32,
-    ) -> Result<Built<BspNode>, BuildError> {
+    fn build<G: Geometry>(geom: &G, params: &BspParams, root: Aabb, pad: f32) -> BuildResult<Self> {
         build::build(geom, root, pad, &params.limits(geom.len())?)
     }
 

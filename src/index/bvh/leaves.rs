@@ -97,10 +97,10 @@ impl Leaves<'_> {
     pub fn prefetch(self, leaf: Child) {
         match self {
             Leaves::Ids(ids) => {
-                super::walk::prefetch(ids.as_ptr().wrapping_add(leaf.index as usize))
+                crate::index::prefetch::prefetch(ids.as_ptr().wrapping_add(leaf.index as usize))
             }
             Leaves::Blocks(b) => {
-                super::walk::prefetch(b.as_ptr().wrapping_add(leaf.index as usize))
+                crate::index::prefetch::prefetch(b.as_ptr().wrapping_add(leaf.index as usize))
             }
         }
     }

@@ -29,7 +29,7 @@ pub(crate) mod sweep;
 pub use node::{KdKind, KdNode};
 
 use super::BuildError;
-use super::near_far::{Built, NearFarIndex, Partition, SahParams};
+use super::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::geometry::Aabb;
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
@@ -81,15 +81,10 @@ impl Default for KdParams {
 pub type KdTree = NearFarIndex<KdNode>;
 
 impl Partition for KdNode {
-    const NAME: &'static str = "kdtree";
     type Params = KdParams;
+    const NAME: &'static str = "kdtree";
 
-    fn build<G: Geometry>(
-        geom: &G,
-        p: &KdParams,
-        root: Aabb,
-        pad: f32,
-    ) -> Result<Built<KdNode>, BuildError> {
+    fn build<G: Geometry>(geom: &G, p: &KdParams, root: Aabb, pad: f32) -> BuildResult<Self> {
         let sah = SahParams::validate(
             Self::NAME,
             (p.intersect_cost, p.traversal_cost, p.empty_bonus),
@@ -122,12 +117,10 @@ impl Partition for KdNode {
 impl KdTree {
     /// Every split plane as `(axis, position)`, depth-first (for tests that aim rays at them).
     pub fn split_planes(&self) -> Vec<(usize, f32)> {
-        self.nodes()
-            .iter()
-            .filter_map(|n| match n.kind() {
-                KdKind::Interior { axis, split, .. } => Some((axis, split)),
-                KdKind::Leaf { .. } => None,
-            })
-            .collect()
+        let plane = |n: &KdNode| match n.kind() {
+            KdKind::Interior { axis, split, .. } => Some((axis, split)),
+            KdKind::Leaf { .. } => None,
+        };
+        self.nodes().iter().filter_map(plane).collect()
     }
 }

@@ -24,11 +24,14 @@ pub trait Partition: SplitNode {
         params: &Self::Params,
         root: Aabb,
         pad: f32,
-    ) -> Result<Built<Self>, BuildError>;
+    ) -> BuildResult<Self>;
     /// Whether the walk keeps a mailbox (each primitive tested at most once per ray) with
     /// these parameters.
     fn mailbox(params: &Self::Params) -> bool;
 }
+
+/// What [`Partition::build`] returns.
+pub type BuildResult<N> = Result<Built<N>, BuildError>;
 
 /// A builder's output: depth-first nodes (the child below a plane right after its parent), the
 /// id array of the leaves of more than one primitive, and figures for reports.

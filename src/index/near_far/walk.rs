@@ -19,8 +19,8 @@
 use super::MAX_TREE_DEPTH;
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::index::Stats;
-use crate::index::bvh::walk::prefetch;
 use crate::index::mailbox::{Mailbox, with_mailbox};
+use crate::index::prefetch::prefetch;
 use crate::index::stack::Stack;
 use crate::scene::Geometry;
 

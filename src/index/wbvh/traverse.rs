@@ -20,7 +20,8 @@ use super::node::WideNode;
 use crate::index::Stats;
 use crate::index::bvh::MAX_DEPTH;
 use crate::index::bvh::node::Child;
-use crate::index::bvh::walk::{self, BoxTree, Entry, Step, prefetch, prefetch_line};
+use crate::index::bvh::walk::{self, BoxTree, Entry, Step};
+use crate::index::prefetch::{prefetch, prefetch_line};
 use crate::index::stack::Stack;
 
 /// Stack capacity of the wide trees' traversal.
