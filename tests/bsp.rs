@@ -6,7 +6,7 @@ mod common;
 mod partition_kit;
 
 use accelbench::geometry::Ray;
-use accelbench::index::bsp::BspKind;
+use accelbench::index::bsp::BspNode;
 use accelbench::index::{Bsp, Index};
 use accelbench::rays::SplitMix64;
 use accelbench::scene::{Scene, generators};
@@ -120,19 +120,9 @@ fn degenerate_input_terminates_and_agrees() {
 /// Mailboxing, the structure figures and typed parameter errors (`partition_kit`).
 #[test]
 fn partition_basics_hold() {
-    let leaves = |t: &Bsp| {
-        t.nodes()
-            .iter()
-            .filter_map(|n| match n.kind() {
-                BspKind::Leaf { first, count } => Some((first, count)),
-                BspKind::Interior { .. } => None,
-            })
-            .collect()
-    };
-    assert_partition_basics::<Bsp>(
+    assert_partition_basics::<BspNode>(
         "bsp",
         24,
-        leaves,
         &[
             ("sweep=false,plane_candidates=0", "candidates"),
             ("plane_candidates=100000", "candidates"),

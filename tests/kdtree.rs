@@ -4,7 +4,7 @@
 mod common;
 mod partition_kit;
 
-use accelbench::index::kdtree::KdKind;
+use accelbench::index::kdtree::KdNode;
 use accelbench::index::{Index, KdTree};
 use accelbench::scene::{Scene, generators};
 use partition_kit::*;
@@ -57,15 +57,6 @@ fn degenerate_input_terminates_and_agrees() {
 /// Mailboxing, the structure figures and typed parameter errors (`partition_kit`).
 #[test]
 fn partition_basics_hold() {
-    let leaves = |t: &KdTree| {
-        t.nodes()
-            .iter()
-            .filter_map(|n| match n.kind() {
-                KdKind::Leaf { first, count } => Some((first, count)),
-                KdKind::Interior { .. } => None,
-            })
-            .collect()
-    };
     let bad_bins = [("bins=1", "bins"), ("bins=1025", "bins")];
-    assert_partition_basics::<KdTree>("kdtree", 8, leaves, &bad_bins);
+    assert_partition_basics::<KdNode>("kdtree", 8, &bad_bins);
 }

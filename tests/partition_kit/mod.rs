@@ -4,6 +4,7 @@
 
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};
+use accelbench::index::near_far::{NearFarIndex, Partition};
 use accelbench::index::{BuildError, Counters, Index, IndexSpec, build_index, build_index_on};
 use accelbench::rays::SplitMix64;
 use accelbench::scene::{Geometry, Scene, Triangles, generators};
@@ -227,21 +228,17 @@ pub fn assert_tests_each_primitive_once<I: Index>() {
     }
 }
 
-/// The figures of `I` (registered as `name`, nodes of `node_bytes`, 4-byte ids) describe a full
-/// binary tree whose leaves (`leaves(index)`: every leaf's `(first, count)`) hold every
-/// reference: a leaf of one primitive holds a primitive id itself, the others index the id
-/// array, which holds nothing else; and `max_depth=4` bounds its depth.
-pub fn assert_structure_figures<I: Index>(
-    name: &str,
-    node_bytes: usize,
-    leaves: fn(&I) -> Vec<(u32, u32)>,
-) {
+/// The figures of `NearFarIndex<N>` (registered as `name`, nodes of `node_bytes`, 4-byte ids)
+/// describe a full binary tree whose leaves hold every reference: a leaf of one primitive holds
+/// a primitive id itself, the others index the id array, which holds nothing else; and
+/// `max_depth=4` bounds its depth.
+pub fn assert_structure_figures<N: Partition>(name: &str, node_bytes: usize) {
     let scene = generators::generate("icosphere", 5000, 1).unwrap();
-    let index = build_on::<I>(name, &scene, "");
+    let index = build_on::<NearFarIndex<N>>(name, &scene, "");
     let info = index.info();
     assert_eq!(info.nodes, 2 * info.leaves - 1, "a full binary tree");
     assert!(info.prim_refs >= scene.triangles.len());
-    let leaves = leaves(&index);
+    let leaves: Vec<(u32, u32)> = index.leaves().collect();
     assert_eq!(leaves.len(), info.leaves);
     let refs: u32 = leaves.iter().map(|l| l.1).sum();
     assert_eq!(
@@ -263,7 +260,9 @@ pub fn assert_structure_figures<I: Index>(
         "the id array holds the runs of the leaves of other sizes"
     );
     assert!(runs.iter().all(|l| (l.0 + l.1) as usize <= id_slots));
-    let depth = build_on::<I>(name, &scene, ":max_depth=4").info().depth;
+    let depth = build_on::<NearFarIndex<N>>(name, &scene, ":max_depth=4")
+        .info()
+        .depth;
     assert!(depth <= 5, "depth {depth} within max_depth=4");
 }
 
@@ -296,18 +295,16 @@ pub fn assert_bad_parameters(index: &str, own: &[(&str, &str)]) {
     }
 }
 
-/// What every binary space partition `I` (registered as `index`, nodes of `node_bytes`, leaves
-/// listed by `leaves`) promises: [`assert_tests_each_primitive_once`],
-/// [`assert_structure_figures`] and [`assert_bad_parameters`] with its own bad parameters
-/// `own_bad`.
-pub fn assert_partition_basics<I: Index>(
+/// What every binary space partition `NearFarIndex<N>` (registered as `index`, nodes of
+/// `node_bytes`) promises: [`assert_tests_each_primitive_once`], [`assert_structure_figures`]
+/// and [`assert_bad_parameters`] with its own bad parameters `own_bad`.
+pub fn assert_partition_basics<N: Partition>(
     index: &str,
     node_bytes: usize,
-    leaves: fn(&I) -> Vec<(u32, u32)>,
     own_bad: &[(&str, &str)],
 ) {
-    assert_tests_each_primitive_once::<I>();
-    assert_structure_figures::<I>(index, node_bytes, leaves);
+    assert_tests_each_primitive_once::<NearFarIndex<N>>();
+    assert_structure_figures::<N>(index, node_bytes);
     assert_bad_parameters(index, own_bad);
 }
 

@@ -113,6 +113,13 @@ impl Partition for BspNode {
     fn mailbox(params: &BspParams) -> bool {
         params.mailbox
     }
+
+    fn leaf(&self) -> Option<(u32, u32)> {
+        match self.kind() {
+            BspKind::Leaf { first, count } => Some((first, count)),
+            BspKind::Interior { .. } => None,
+        }
+    }
 }
 
 impl Bsp {

@@ -112,6 +112,13 @@ impl Partition for KdNode {
     fn mailbox(params: &KdParams) -> bool {
         params.mailbox
     }
+
+    fn leaf(&self) -> Option<(u32, u32)> {
+        match self.kind() {
+            KdKind::Leaf { first, count } => Some((first, count)),
+            KdKind::Interior { .. } => None,
+        }
+    }
 }
 
 impl KdTree {

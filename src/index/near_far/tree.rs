@@ -28,6 +28,10 @@ pub trait Partition: SplitNode {
     /// Whether the walk keeps a mailbox (each primitive tested at most once per ray) with
     /// these parameters.
     fn mailbox(params: &Self::Params) -> bool;
+
+    /// A leaf's `(first, count)` (for a one-primitive leaf, `first` is the primitive's id; else
+    /// the first slot of its run in the id array), or `None` for an interior node.
+    fn leaf(&self) -> Option<(u32, u32)>;
 }
 
 /// What [`Partition::build`] returns.
@@ -82,6 +86,13 @@ impl<N> NearFarIndex<N> {
     /// The bounds of the root cell.
     pub fn bounds(&self) -> Aabb {
         self.bounds
+    }
+}
+
+impl<N: Partition> NearFarIndex<N> {
+    /// Every leaf's `(first, count)` ([`Partition::leaf`]), depth-first.
+    pub fn leaves(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.nodes.iter().filter_map(N::leaf)
     }
 }
 
