@@ -106,8 +106,8 @@ fn near_far<P, V>(p: &[[P; 3]; 2], near: [usize; 3], load: impl Fn(&P) -> V) -> 
     )
 }
 
-/// The wide tree: nodes in depth-first order (the root first), and a reference to the root,
-/// which is a leaf when the binary tree is one leaf.
+/// The wide tree: nodes with the root first and each node's inner children next to each other,
+/// and a reference to the root, which is a leaf when the binary tree is one leaf.
 pub struct Collapsed<const C: usize> {
     pub root: Child,
     pub nodes: Vec<WideNode<C>>,
@@ -186,9 +186,10 @@ fn merged_leaves(nodes: &[Node], merge_up_to: u32) -> Vec<Option<Child>> {
     runs.into_iter().map(leaf).collect()
 }
 
-/// Appends the wide node for binary node `index` (and its subtree); returns its index.
-fn emit<const C: usize>(index: u32, binary: &Binary, out: &mut Collapsed<C>, level: u32) -> u32 {
-    out.depth = out.depth.max(level + 1);
+/// The children of the wide node for binary node `index`: its two children, with the inner
+/// child of largest surface area replaced by its two children while there are fewer than
+/// `4 * C`.
+fn open<const C: usize>(index: u32, binary: &Binary) -> Vec<(Aabb, Child)> {
     let mut kids: Vec<(Aabb, Child)> = binary.kids(index).to_vec();
     while kids.len() < 4 * C {
         let Some((pos, _)) = kids
@@ -202,16 +203,44 @@ fn emit<const C: usize>(index: u32, binary: &Binary, out: &mut Collapsed<C>, lev
         let (_, opened) = kids.swap_remove(pos);
         kids.extend(binary.kids(opened.index));
     }
+    kids
+}
+
+/// Appends the wide node for binary node `index` and its subtree; returns its index.
+fn emit<const C: usize>(index: u32, binary: &Binary, out: &mut Collapsed<C>, level: u32) -> u32 {
     let me = out.nodes.len();
+    let kids = open::<C>(index, binary);
     out.nodes.push(WideNode::new(&kids));
+    emit_children(me, &kids, binary, out, level);
+    me as u32
+}
+
+/// Links node `me` (built from `kids`) to its children: its inner children's nodes are
+/// appended next to each other, then each one's subtree in turn, so a node's children share
+/// cache pages.
+fn emit_children<const C: usize>(
+    me: usize,
+    kids: &[(Aabb, Child)],
+    binary: &Binary,
+    out: &mut Collapsed<C>,
+    level: u32,
+) {
+    out.depth = out.depth.max(level + 1);
+    let mut inner = Vec::new();
     for (i, (_, child)) in kids.iter().enumerate() {
         let c = if child.is_leaf() {
             out.leaves += 1;
             *child
         } else {
-            Child::inner(emit(child.index, binary, out, level + 1))
+            let slot = out.nodes.len();
+            let grandkids = open::<C>(child.index, binary);
+            out.nodes.push(WideNode::new(&grandkids));
+            inner.push((slot, grandkids));
+            Child::inner(slot as u32)
         };
         out.nodes[me].children[i / 4][i % 4] = c;
     }
-    me as u32
+    for (slot, grandkids) in inner {
+        emit_children(slot, &grandkids, binary, out, level + 1);
+    }
 }
