@@ -13,6 +13,7 @@
 //! split uncertain; `r2` and `points` say how well the model explains the times.
 
 use super::fixed;
+use super::verdict::index_label;
 use crate::harness::suite::ResultRow;
 
 impl CostFit {
@@ -174,9 +175,10 @@ pub fn cost_points(rows: &[ResultRow]) -> Vec<(String, Vec<CostPoint>)> {
             tests_per_ray: r.prim_tests_per_ray,
             ns_per_ray: ns,
         };
-        match out.iter_mut().find(|(i, _)| *i == r.index) {
+        let label = index_label(r, rows);
+        match out.iter_mut().find(|(i, _)| *i == label) {
             Some((_, v)) => v.push(p),
-            None => out.push((r.index.clone(), vec![p])),
+            None => out.push((label, vec![p])),
         }
     }
     out

@@ -2,6 +2,7 @@
 //! thread scaling.
 
 use super::run_meta::RunMeta;
+use super::verdict::index_label;
 use super::{BarGroup, Chart, ReportError, Series, bar_chart, line_chart};
 use crate::harness::suite::ResultRow;
 use std::path::Path;
@@ -40,7 +41,7 @@ fn groups(
             bars: rows
                 .iter()
                 .filter(|r| r.scene == s && keep(r))
-                .map(|r| (r.index.clone(), value(r)))
+                .map(|r| (index_label(r, rows), value(r)))
                 .collect(),
         })
         .filter(|g| !g.bars.is_empty())
@@ -120,15 +121,18 @@ pub(super) fn write_plots(
     let threads = uniq_threads(rows);
     if threads.len() > 1 {
         let mut series = Vec::new();
-        for index in uniq(rows.iter().map(|r| r.index.as_str())) {
+        let labels: Vec<String> = rows.iter().map(|r| index_label(r, rows)).collect();
+        for index in uniq(labels.iter().map(String::as_str)) {
             let mut pts = Vec::new();
             for &t in &threads {
                 let ratios: Vec<f64> = rows
                     .iter()
-                    .filter(|r| r.index == index && r.threads == t)
-                    .filter_map(|r| {
+                    .zip(&labels)
+                    .filter(|(r, l)| *l == index && r.threads == t)
+                    .filter_map(|(r, _)| {
                         let base = rows.iter().find(|b| {
                             b.index == r.index
+                                && b.params == r.params
                                 && b.scene == r.scene
                                 && b.ray_set == r.ray_set
                                 && b.threads == min_threads

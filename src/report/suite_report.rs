@@ -10,7 +10,7 @@ use super::html::write_html;
 pub use super::run_meta::{RunMeta, run_id_now};
 use super::run_notes::{PictureRef, RunNotes, pictures_markdown};
 use super::suite_plots::{scenes, uniq, uniq_threads, write_plots};
-use super::verdict::verdicts;
+use super::verdict::{index_label, verdicts};
 use super::{ReportError, write_csv};
 use crate::harness::suite::{ResultRow, SuiteResult};
 use std::fmt::Write as _;
@@ -91,13 +91,15 @@ pub fn write_report(
     write_html(dir, meta, rows, notes, &verdicts(rows), &fits, &plots)
 }
 
-/// Rows of one index, in first-seen order of the indices.
-fn by_index<'a>(rows: &[&'a ResultRow]) -> Vec<(&'a str, Vec<&'a ResultRow>)> {
-    let mut v: Vec<(&str, Vec<&ResultRow>)> = Vec::new();
+/// Rows of one index (name and parameters) with its label ([`index_label`]), in first-seen
+/// order of the indices.
+fn by_index<'a>(rows: &[&'a ResultRow]) -> Vec<(String, Vec<&'a ResultRow>)> {
+    let mut v: Vec<(String, Vec<&ResultRow>)> = Vec::new();
     for r in rows {
-        match v.iter_mut().find(|(i, _)| *i == r.index) {
+        let label = index_label(r, rows.iter().copied());
+        match v.iter_mut().find(|(l, _)| *l == label) {
             Some((_, rs)) => rs.push(r),
-            None => v.push((&r.index, vec![r])),
+            None => v.push((label, vec![r])),
         }
     }
     v
@@ -161,12 +163,13 @@ fn set_table(rows: &[&ResultRow], threads: &[usize]) -> String {
 /// With the exact kernel, the share of edge functions its exact fallback decided, per index
 /// (from the counting pass); empty otherwise.
 fn fallback_line(rows: &[&ResultRow]) -> String {
-    let mut seen = Vec::new();
-    for r in rows.iter().filter(|r| r.exact_fallback_rate.is_finite()) {
-        if !seen.iter().any(|(name, _)| *name == r.index) {
-            seen.push((r.index.as_str(), r.exact_fallback_rate));
-        }
-    }
+    let seen: Vec<(String, f64)> = by_index(rows)
+        .into_iter()
+        .filter_map(|(name, rs)| {
+            let r = rs.iter().find(|r| r.exact_fallback_rate.is_finite())?;
+            Some((name, r.exact_fallback_rate))
+        })
+        .collect();
     if seen.is_empty() {
         return String::new();
     }
@@ -301,4 +304,59 @@ pub fn summary_markdown(
     }
     s.push_str(&pictures_markdown(notes));
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(index: &str, params: &str, mrays: f64) -> ResultRow {
+        ResultRow {
+            scene: "s".into(),
+            primitives: 10,
+            index: index.into(),
+            params: params.into(),
+            ray_set: "primary".into(),
+            rays: 100,
+            threads: 1,
+            build_ms: 1.0,
+            memory_bytes: 100,
+            trace_ms_median: 1.0,
+            trace_ms_spread: 0.0,
+            mrays_per_s: mrays,
+            mtests_per_s: 1.0,
+            prim_tests_per_ray: 1.0,
+            node_visits_per_ray: 1.0,
+            box_tests_per_ray: 1.0,
+            hits: 1,
+            mismatches: 0,
+            brute_verified_rays: 100,
+            query: "closest".into(),
+            kernel: "exact".into(),
+            repeats: 1,
+            exact_fallback_rate: 0.0,
+            peer_ties: None,
+            peer_t_off: None,
+            peer_wrong: None,
+        }
+    }
+
+    /// One index name with two parameter sets gives two rows, each labelled with its parameters;
+    /// an index without a twin keeps its bare name.
+    #[test]
+    fn the_same_index_with_other_parameters_keeps_its_own_row() {
+        let rows = [
+            row("bvh", "a = 1", 2.0),
+            row("bvh", "a = 2", 4.0),
+            row("grid", "", 1.0),
+        ];
+        let refs: Vec<&ResultRow> = rows.iter().collect();
+        let table = set_table(&refs, &[1]);
+        assert!(table.contains("| bvh [a = 1] | 2.00 | 0.50 |"), "{table}");
+        assert!(table.contains("| bvh [a = 2] | 4.00 | 1.00 |"), "{table}");
+        assert!(table.contains("| grid | 1.00 | 0.25 |"), "{table}");
+        assert_eq!(build_table(&refs).lines().count(), 5);
+        let fits = cost_fits(&rows);
+        assert_eq!(fits.len(), 3);
+    }
 }

@@ -32,9 +32,9 @@ impl Verdict {
 
 /// A row's index label: its name, with its parameters when the run has the same index name
 /// with other parameters too (`bvh` and `bvh [preset=sweep]`).
-pub fn index_label(row: &ResultRow, rows: &[ResultRow]) -> String {
+pub fn index_label<'a>(row: &ResultRow, rows: impl IntoIterator<Item = &'a ResultRow>) -> String {
     let clash = rows
-        .iter()
+        .into_iter()
         .any(|r| r.index == row.index && r.params != row.params);
     match clash {
         true => format!("{} [{}]", row.index, row.params),
