@@ -1,12 +1,17 @@
 //! The BVH (every preset) against brute force: the agreement scenes, the bunny, degenerate
-//! inputs, the depth cap, bad parameters, and that it actually culls.
+//! inputs, the depth cap, bad parameters, and that it actually culls. Spatial splits
+//! (`spatial_splits=true` on `bvh`, `bvh4`, `bvh8`): brute force's hits bit for bit with every
+//! kernel on the agreement scenes, shapes, the bunny and the stress cases, in every trace mode;
+//! they happen on slivers, within the reference budget, and the build is deterministic.
 
 mod common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::harness::verify::compare_closest;
-use accelbench::index::bvh::{MAX_DEPTH, Preset};
-use accelbench::index::{BuildError, Counters, IndexSpec, TraceIndex, build_index};
+use accelbench::harness::verify::{compare_closest, compare_with_expected};
+use accelbench::index::bvh::{BvhParams, MAX_DEPTH, Preset};
+use accelbench::index::{
+    BuildError, Counters, IndexInfo, IndexSpec, TraceIndex, TraceMode, build_index,
+};
 use accelbench::rays::incoherent_rays;
 use accelbench::scene::{Scene, generators};
 use common::{agreement_rays, agreement_scenes};
@@ -238,6 +243,8 @@ fn bad_parameters_and_empty_scenes_are_errors() {
         ("bvh:preset=\"slowest\"", "preset"),
         ("bvh:split=\"median\"", "split"),
         ("bvh:leafsize=4", "unknown field"),
+        ("bvh:spatial_splits=2", "spatial_splits"),
+        ("bvh8:spatial_splits=\"yes\"", "spatial_splits"),
     ] {
         let s: IndexSpec = spec.parse().unwrap();
         let err = build_index(&s, &scene.geometry(), TriangleKernelKind::Watertight)
@@ -281,4 +288,192 @@ fn culls_most_primitives_and_reports_memory() {
         .1;
     assert_eq!(bpp, info.memory_bytes as f64 / scene.len() as f64);
     assert_eq!(info.memory_bytes, info.nodes * 32 + scene.len() * 4);
+}
+
+/// The spatial-split variants: each tree with the default preset, and the binary tree with the
+/// full sweep and with one-primitive leaves and two bins.
+fn spatial_specs() -> Vec<String> {
+    ["bvh", "bvh4", "bvh8"]
+        .map(|n| format!("{n}:spatial_splits=true"))
+        .into_iter()
+        .chain([
+            "bvh:spatial_splits=true,preset=\"sweep\"".to_owned(),
+            "bvh:spatial_splits=true,leaf_size=1,bins=2".to_owned(),
+        ])
+        .collect()
+}
+
+/// Asserts that every spatial-split variant returns brute force's hits (closest bit for bit,
+/// any-hit) on `rays` over `scene` with `kernel` (brute force traced once).
+fn assert_spatial_agrees(scene: &Scene, kernel: TriangleKernelKind, rays: &[Ray]) {
+    let geom = scene.geometry();
+    let brute = build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
+    let mut expected = vec![None; rays.len()];
+    brute.closest_hits(rays, &mut expected);
+    for spec in spatial_specs() {
+        let index = build_index(&spec.parse().unwrap(), &geom, kernel).unwrap();
+        let m = compare_with_expected(index.as_ref(), rays, &expected);
+        common::assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
+    }
+}
+
+#[test]
+fn spatial_splits_agree_on_the_generated_scenes_with_every_kernel() {
+    let mut scenes = agreement_scenes();
+    scenes.push(generators::generate("shapes", 2000, 7).unwrap());
+    for scene in &scenes {
+        let rays = agreement_rays(scene, 1500);
+        for kernel in TriangleKernelKind::ALL {
+            assert_spatial_agrees(scene, kernel, &rays);
+        }
+    }
+}
+
+#[test]
+fn spatial_splits_agree_on_the_bunny() {
+    let Some(bunny) = common::bunny() else { return };
+    let rays = common::bunny_protocol_sample(&bunny);
+    assert_spatial_agrees(&bunny, TriangleKernelKind::Watertight, &rays);
+}
+
+#[test]
+fn spatial_splits_pass_the_stress_cases() {
+    for case in accelbench::stress::cases::all_cases(500, 1000) {
+        let scene = Scene {
+            name: case.name.into(),
+            triangles: case.scene.triangles.to_vec(),
+            spheres: case.scene.spheres.to_vec(),
+            shapes: case.scene.shapes.to_vec(),
+            ..Scene::default()
+        };
+        assert_spatial_agrees(&scene, case.kernel, &case.rays);
+    }
+}
+
+#[test]
+fn spatial_splits_agree_in_every_trace_mode() {
+    let mut scenes: Vec<Scene> = agreement_scenes().into_iter().take(8).collect();
+    scenes.extend(common::bunny());
+    for scene in &scenes {
+        let rays = agreement_rays(scene, 600);
+        let brute = build("brute", scene);
+        let mut expected = vec![None; rays.len()];
+        brute.closest_hits(&rays, &mut expected);
+        for spec in spatial_specs() {
+            let index = build(&spec, scene);
+            for mode in [
+                TraceMode::LastHit,
+                TraceMode::Packets(4),
+                TraceMode::Packets(8),
+            ] {
+                let mut got = vec![None; rays.len()];
+                index.closest_hits_in(mode, &rays, &mut got, None);
+                let m = compare_closest(&rays, &expected, &got);
+                common::assert_no_mismatch(&format!("{spec} {mode:?}"), scene, rays.len(), &m);
+                let mut any = vec![false; rays.len()];
+                index.any_hits_in(mode, &rays, &mut any, None);
+                let wrong = (0..rays.len()).filter(|&i| any[i] != expected[i].is_some());
+                assert_eq!(
+                    wrong.count(),
+                    0,
+                    "{spec} {mode:?} any-hit on {}",
+                    scene.name
+                );
+            }
+        }
+    }
+}
+
+/// On slivers (long thin triangles crossing each other) spatial splits happen: more references
+/// than primitives, at most `split_budget` per primitive (the default, and 2 when asked), fewer primitive tests per
+/// ray than without; and the tree is the same on every build and thread count.
+#[test]
+fn spatial_splits_happen_on_slivers_and_the_build_is_deterministic() {
+    let scene = generators::generate("slivers", 20_000, 1).unwrap();
+    let n = scene.len();
+    let rays = incoherent_rays(&scene.ray_set_bounds(), 2000, 42);
+    let tests_per_ray = |index: &dyn TraceIndex| {
+        let mut out = vec![None; rays.len()];
+        let mut c = vec![Counters::default(); rays.len()];
+        index.closest_hits_counted(&rays, &mut out, &mut c);
+        c.into_iter().sum::<Counters>().prim_tests as f64 / rays.len() as f64
+    };
+    for name in ["bvh", "bvh4", "bvh8"] {
+        let spec = format!("{name}:spatial_splits=true");
+        let pool = |t| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .unwrap()
+        };
+        let [a, b, c] = [1, 1, 2].map(|t| pool(t).install(|| build(&spec, &scene)));
+        let refs = a.info().prim_refs;
+        let per_prim = BvhParams::default().config().unwrap().split_budget;
+        assert!(
+            refs > n && refs as f32 <= per_prim * n as f32,
+            "{spec}: {refs} references"
+        );
+        let two = build(&format!("{spec},split_budget=2"), &scene)
+            .info()
+            .prim_refs;
+        assert!(
+            two > n && two <= 2 * n,
+            "{spec}: {two} references at budget 2"
+        );
+        // Everything but the build time, which differs between any two builds.
+        let key = |i: &dyn TraceIndex| {
+            let info = IndexInfo {
+                build_time: Default::default(),
+                ..i.info().clone()
+            };
+            format!("{info:?}")
+        };
+        assert_eq!(key(a.as_ref()), key(b.as_ref()), "{spec}");
+        assert_eq!(key(a.as_ref()), key(c.as_ref()), "{spec}");
+        let plain = build(name, &scene);
+        assert_eq!(plain.info().prim_refs, n);
+        let (with, without) = (tests_per_ray(a.as_ref()), tests_per_ray(plain.as_ref()));
+        assert!(
+            with < without,
+            "{spec}: {with} tests per ray, {without} without"
+        );
+    }
+}
+
+/// `accelbench sweep bvh` writes one CSV row per (tree, budget) point, each with its
+/// references, and both charts; a budget outside 1..=64 exits non-zero and names the option.
+#[test]
+fn cli_sweep_bvh_writes_csv_and_charts() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let o = common::cli::accelbench(&[
+        "sweep",
+        "bvh",
+        "--scene",
+        "slivers:n=300",
+        "--size",
+        "24",
+        "--repeats",
+        "1",
+        "--trees",
+        "bvh,bvh8",
+        "--split-budget",
+        "1,4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
+    assert!(
+        csv.lines()
+            .any(|l| l.contains("bvh8") && l.contains("split_budget=4")),
+        "{csv}"
+    );
+    for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    let bad = common::cli::accelbench(&["sweep", "bvh", "--scene", "soup", "--split-budget=0.5"]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("split-budget"));
 }

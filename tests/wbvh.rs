@@ -1,11 +1,12 @@
 //! The wide BVHs (`bvh4`, `bvh8`) beyond the generic agreement test: with leaves of every size
-//! up to 8 and nodes of every width from 2 to 8 present, and on small corner scenes, they
-//! return brute force's hits bit for bit.
+//! up to 8 and nodes of every width from 2 to 8 present, with spatial splits (primitives in
+//! several leaves), and on small corner scenes, they return brute force's hits bit for bit.
 
 mod common;
 
-use accelbench::geometry::Triangle;
-use accelbench::index::{Bvh4, Bvh8, BvhParams, Index};
+use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
+use accelbench::harness::verify::compare_with_expected;
+use accelbench::index::{Bvh4, Bvh8, BvhParams, Index, IndexSpec, build_index};
 use accelbench::scene::{Scene, Triangles, generators};
 
 /// Leaf sizes 1..=8 and node widths 2..=`max_children` all occur in the wide trees of the
@@ -53,17 +54,36 @@ fn specs() -> Vec<String> {
         }
         s.push(format!("{name}:preset=\"sweep\""));
         s.push(format!("{name}:leaf_size=8,cost_ratio=100.0"));
+        s.push(format!("{name}:spatial_splits=true,leaf_size=1"));
+        s.push(format!(
+            "{name}:spatial_splits=true,leaf_size=8,cost_ratio=100.0"
+        ));
     }
     s
+}
+
+/// Asserts that every spec of [`specs`] returns brute force's hits (closest bit for bit,
+/// any-hit) on `rays` over `scene` with the watertight and the exact kernel (brute force traced
+/// once per kernel).
+fn assert_specs_agree(scene: &Scene, rays: &[Ray]) {
+    let geom = scene.geometry();
+    for kernel in [TriangleKernelKind::Watertight, TriangleKernelKind::Exact] {
+        let brute = build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
+        let mut expected = vec![None; rays.len()];
+        brute.closest_hits(rays, &mut expected);
+        for spec in specs() {
+            let index = build_index(&spec.parse().unwrap(), &geom, kernel).unwrap();
+            let m = compare_with_expected(index.as_ref(), rays, &expected);
+            common::assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
+        }
+    }
 }
 
 #[test]
 fn parameters_agree_on_the_generated_scenes() {
     for scene in common::agreement_scenes() {
         let rays = common::agreement_rays(&scene, 600);
-        for spec in specs() {
-            common::assert_agrees(&spec, &scene, &rays);
-        }
+        assert_specs_agree(&scene, &rays);
     }
 }
 
@@ -83,9 +103,7 @@ fn one_triangle_and_coincident_duplicates() {
         scene_of("duplicates", vec![t; 40]),
     ] {
         let rays = common::agreement_rays(&scene, 500);
-        for spec in specs() {
-            common::assert_agrees(&spec, &scene, &rays);
-        }
+        assert_specs_agree(&scene, &rays);
     }
 }
 

@@ -5,6 +5,7 @@
 use super::{parse_threads, with_threads};
 use crate::geometry::{Aabb, Ray, TriangleKernelKind};
 use crate::harness::sweep::{SweepPoint, SweepRow, SweepSetup, run_sweep};
+use crate::index::bvh::params::{BvhParams, SPLIT_BUDGET};
 use crate::index::grid::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution, resolution};
 use crate::index::{Grid2Params, OctreeParams};
 use crate::rays::{RaySetKind, ray_set};
@@ -28,6 +29,9 @@ enum SweepTarget {
     Grid2(Grid2SweepArgs),
     /// Octree leaf size and depth: one line per --max-depth, against --max-prims.
     Octree(OctreeSweepArgs),
+    /// BVH spatial-split budgets: one line per tree, against --split-budget (references per
+    /// primitive; 1 is the tree without spatial splits).
+    Bvh(BvhSweepArgs),
 }
 
 /// What every sweep takes: the scene, the rays, where to write, how many threads.
@@ -101,6 +105,31 @@ pub struct OctreeSweepArgs {
     max_depth: Vec<u32>,
 }
 
+#[derive(Debug, clap::Args)]
+pub struct BvhSweepArgs {
+    #[command(flatten)]
+    common: CommonSweepArgs,
+    /// Trees, comma-separated (one line each).
+    #[arg(long, value_delimiter = ',', default_value = "bvh,bvh8",
+          value_parser = ["bvh", "bvh4", "bvh8"])]
+    trees: Vec<String>,
+    /// Most references per primitive with spatial splits, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "1,1.5,2,4,8,16",
+          value_parser = parse_split_budget)]
+    split_budget: Vec<f32>,
+}
+
+fn parse_split_budget(s: &str) -> Result<f32, String> {
+    let v: f32 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))?;
+    match SPLIT_BUDGET.contains(&v) {
+        true => Ok(v),
+        false => Err(format!("{v} is outside {SPLIT_BUDGET:?}")),
+    }
+}
+
 fn parse_lambda(s: &str) -> Result<f32, String> {
     let v: f32 = s
         .trim()
@@ -114,6 +143,7 @@ pub fn run(a: SweepArgs) -> anyhow::Result<()> {
         SweepTarget::Grid(g) => run_grid(g),
         SweepTarget::Grid2(g) => run_grid2(g),
         SweepTarget::Octree(o) => run_octree(o),
+        SweepTarget::Bvh(b) => run_bvh(b),
     }
 }
 
@@ -243,10 +273,11 @@ fn sweep_and_write(
             points,
             |r| {
                 eprintln!(
-                    "  x={:<6} {:<44} {size_label} {:>10}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} {size_label}/ray",
+                    "  x={:<6} {:<44} {size_label} {:>10}  refs {:>10}  build {:>9.2} ms  {:>8.3} Mrays/s  {:>8.2} tests/ray  {:>7.2} {size_label}/ray",
                     r.x,
                     r.spec,
                     r.cells,
+                    r.prim_refs,
                     r.build_ms,
                     r.rays_per_s / 1e6,
                     r.prim_tests_per_ray,
@@ -364,4 +395,35 @@ fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
         &plot,
         &default.to_string(),
     )
+}
+
+fn run_bvh(a: BvhSweepArgs) -> anyhow::Result<()> {
+    let p = prepare(&a.common, &a.trees.join("-"))?;
+    let spec = |tree: &str, b: f32| format!("{tree}:spatial_splits=true,split_budget={b}");
+    let mut points: Vec<SweepPoint> = Vec::new();
+    for tree in &a.trees {
+        for &b in &a.split_budget {
+            points.push(SweepPoint {
+                series: tree.clone(),
+                x: b as f64,
+                spec: spec(tree, b).parse()?,
+            });
+        }
+    }
+    let default_budget = BvhParams::default().config()?.split_budget;
+    let plot = SweepPlot {
+        title: format!(
+            "spatial splits on {}, {} rays",
+            p.scene.name,
+            a.common.rays.name()
+        ),
+        x_label: "references per primitive at most (split_budget)".into(),
+        log_x: true,
+        marker: Some((
+            default_budget.into(),
+            format!("default (split_budget={default_budget})"),
+        )),
+    };
+    let default = spec(&a.trees[0], default_budget);
+    sweep_and_write(&p, &a.common, "bvh", "nodes", &points, &plot, &default)
 }

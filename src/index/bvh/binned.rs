@@ -8,7 +8,7 @@ use glam::{BVec3A, Vec3A};
 
 /// Bin slots per axis: the largest accepted bin count, a power of two, so that masking a bin
 /// index (always below the bin count) with `SLOTS - 1` proves it in range without changing it.
-const SLOTS: usize = 64;
+pub const SLOTS: usize = 64;
 const _: () = assert!(SLOTS == *BINS.end() as usize && SLOTS.is_power_of_two());
 
 /// Nodes with at least this many primitives bin into two sets (even and odd primitives), so
@@ -117,15 +117,94 @@ fn truncate(v: Vec3A) -> [usize; 3] {
 pub struct Scratch {
     /// Even and odd primitives' bins (the second used only from [`TWO_SETS_MIN`] primitives).
     sets: Box<[BinSet; 2]>,
-    /// Per plane `k` of the axis being swept: SAH term `area * count` and box of bins `k..`.
-    right: Box<[(f32, Aabb); SLOTS]>,
+    sweep: Sweep,
 }
 
 impl Default for Scratch {
     fn default() -> Scratch {
         Scratch {
             sets: Box::new([BinSet::EMPTY, BinSet::EMPTY]),
-            right: Box::new([(0.0, Aabb::EMPTY); SLOTS]),
+            sweep: Sweep::default(),
+        }
+    }
+}
+
+/// The bins of one axis as the SAH sweep reads them: bin `k` holds references whose bounds'
+/// union is `min[k]..max[k]` (`+inf..-inf` when empty); `enter[k]` of them start in it
+/// (they go left of every plane above `k`) and `exit[k]` end in it (they go right of every
+/// plane up to `k`). For object bins both are the bin's count; a spatial split counts a
+/// reference that spans several bins once in its first and once in its last.
+pub struct AxisBins<'a> {
+    pub min: &'a [Vec3A],
+    pub max: &'a [Vec3A],
+    pub enter: &'a [u32],
+    pub exit: &'a [u32],
+}
+
+/// A scored plane: between bins `plane - 1` and `plane` of `axis`, with
+/// `cost = area(left) * counts[0] + area(right) * counts[1]` (both counts > 0).
+#[derive(Debug, Clone, Copy)]
+pub struct Plane {
+    pub cost: f32,
+    pub axis: usize,
+    pub plane: usize,
+    pub left: Aabb,
+    pub right: Aabb,
+    pub counts: [u32; 2],
+}
+
+/// The SAH sweep's buffer: per plane `k` of the axis being swept, the SAH term
+/// `area * count`, the box and the count of bins `k..`.
+pub struct Sweep {
+    right: Box<[(f32, Aabb, u32); SLOTS]>,
+}
+
+impl Default for Sweep {
+    fn default() -> Sweep {
+        Sweep {
+            right: Box::new([(0.0, Aabb::EMPTY); SLOTS].map(|(a, b)| (a, b, 0))),
+        }
+    }
+}
+
+impl Sweep {
+    /// Scores the planes between the bins of `axis` (at most [`SLOTS`]) that send at most
+    /// `max_refs` references to the two sides together, and keeps in `best` the first plane
+    /// strictly cheaper than it, planes in increasing order.
+    pub fn axis(&mut self, axis: usize, bins: &AxisBins, max_refs: u32, best: &mut Option<Plane>) {
+        let (lo, hi) = (bins.min, bins.max);
+        let n = lo.len().min(SLOTS);
+        let right = &mut *self.right;
+        let (mut acc, mut c) = (Aabb::EMPTY, 0u32);
+        for k in (1..n).rev() {
+            acc = Aabb::new(acc.min.min(lo[k]), acc.max.max(hi[k]));
+            c += bins.exit[k];
+            let term = if c > 0 {
+                area(acc.min, acc.max) * c as f32
+            } else {
+                0.0
+            };
+            right[k] = (term, acc, c);
+        }
+        let (mut acc, mut c) = (Aabb::EMPTY, 0u32);
+        for k in 1..n {
+            acc = Aabb::new(acc.min.min(lo[k - 1]), acc.max.max(hi[k - 1]));
+            c += bins.enter[k - 1];
+            let (term, right_box, rc) = right[k];
+            if c == 0 || rc == 0 || c.saturating_add(rc) > max_refs {
+                continue;
+            }
+            let cost = area(acc.min, acc.max) * c as f32 + term;
+            if best.is_none_or(|b| cost < b.cost) {
+                *best = Some(Plane {
+                    cost,
+                    axis,
+                    plane: k,
+                    left: acc,
+                    right: right_box,
+                    counts: [c, rc],
+                });
+            }
         }
     }
 }
@@ -184,40 +263,24 @@ pub fn split(
             set.add(key(r), r);
         }
     }
-    let n = refs.len() as u32;
-    // (cost, axis, plane, left box, right box)
-    let mut best: Option<(f32, usize, usize, Aabb, Aabb)> = None;
-    let right = &mut *scratch.right;
+    let mut best = None;
     for a in (0..3).filter(|&a| ext[a] > 0.0) {
-        let (lo, hi, count) = (&set.min[a], &set.max[a], &set.count[a]);
-        // right[k]: SAH term (0 while empty) and box of bins k..bins.
-        let (mut acc, mut c) = (Aabb::EMPTY, 0u32);
-        for k in (1..bins).rev() {
-            acc = Aabb::new(acc.min.min(lo[k]), acc.max.max(hi[k]));
-            c += count[k];
-            right[k] = (
-                if c > 0 {
-                    area(acc.min, acc.max) * c as f32
-                } else {
-                    0.0
-                },
-                acc,
-            );
-        }
-        let (mut acc, mut c) = (Aabb::EMPTY, 0u32);
-        for k in 1..bins {
-            acc = Aabb::new(acc.min.min(lo[k - 1]), acc.max.max(hi[k - 1]));
-            c += count[k - 1];
-            if c == 0 || c == n {
-                continue;
-            }
-            let cost = area(acc.min, acc.max) * c as f32 + right[k].0;
-            if best.is_none_or(|(b, ..)| cost < b) {
-                best = Some((cost, a, k, acc, right[k].1));
-            }
-        }
+        let bins = AxisBins {
+            min: &set.min[a][..bins],
+            max: &set.max[a][..bins],
+            enter: &set.count[a][..bins],
+            exit: &set.count[a][..bins],
+        };
+        scratch.sweep.axis(a, &bins, u32::MAX, &mut best);
     }
-    let (cost, a, plane, left, right) = best?;
+    let Plane {
+        cost,
+        axis: a,
+        plane,
+        left,
+        right,
+        ..
+    } = best?;
     let plane = plane as f32;
     // The bin is below `plane` exactly when the unclamped offset is (plane <= bins - 1).
     let (mid, lc, rc) = partition(refs, |r| offsets(r.centroid(), min, scale)[a] < plane);

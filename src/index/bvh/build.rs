@@ -2,16 +2,21 @@
 //! parents' child references): a node's slot is taken before its children are built, and its
 //! children's boxes come from the split, so no intermediate tree exists.
 //!
-//! The builder sees only [`PrimRef`]s (bounds, centroid, id). Large subtrees build in parallel
-//! with `rayon::join` when the current pool has more than one thread: the second child's
-//! subtree goes into its own node array, appended after the first child's with its inner
-//! indices shifted, so the result is the same either way (every decision depends only on the
-//! primitives of the subtree).
+//! The builder sees only [`PrimRef`]s (bounds, centroid, id). With spatial splits
+//! ([`super::spatial`]) a node may cut its references at a plane instead of partitioning them,
+//! so a primitive can be referenced by several leaves. Leaves append their ids to the id array
+//! depth first, so every subtree's ids are one contiguous run, its left child's run first (the
+//! wide BVH's collapse relies on this). Large subtrees build in parallel with `rayon::join`
+//! when the current pool has more than one thread: the second child's subtree goes into its own
+//! node and id arrays, appended after the first child's with its references shifted, so the
+//! result is the same either way (every decision depends only on the references of the subtree
+//! and the extra references it may make).
 
-use super::binned::{self, Scratch};
+use super::binned;
 use super::node::{Child, Node};
 use super::params::{BuildConfig, SplitMethod};
 use super::prim_ref::{PrimRef, bounds_and_centroids};
+use super::spatial::{self, Clip, Spatial, share};
 use super::sweep;
 use crate::geometry::Aabb;
 
@@ -19,7 +24,7 @@ use crate::geometry::Aabb;
 /// size, so a traversal stack of `MAX_DEPTH` entries can never overflow.
 pub const MAX_DEPTH: u32 = 64;
 
-/// Subtrees with at least this many primitives build their two children in parallel.
+/// Subtrees with at least this many references build their two children in parallel.
 const PARALLEL_MIN: usize = 4096;
 
 /// The result: the final depth-first node array and the ids in leaf order.
@@ -30,52 +35,56 @@ pub struct Built {
     pub root: Child,
     /// Inner nodes, depth first: a node's first child (if inner) follows it.
     pub nodes: Vec<Node>,
-    /// Primitive ids in leaf order: leaf `i` reads a contiguous run.
+    /// Primitive ids in leaf order: leaf `i` reads a contiguous run; with spatial splits an id
+    /// may occur in several leaves (never twice in one).
     pub prim_ids: Vec<u32>,
     pub leaves: usize,
     /// Levels of the deepest leaf (root = 1), at most [`MAX_DEPTH`].
     pub depth: u32,
 }
 
-/// The inner nodes of a subtree under construction, depth first, indexed from 0 at the start
-/// of `nodes`, with its leaf count and deepest leaf level.
+/// The inner nodes and the ids of a subtree under construction, depth first, indexed from 0 at
+/// the start of `nodes` and `prim_ids`, with its leaf count and deepest leaf level.
 struct Out {
     nodes: Vec<Node>,
+    prim_ids: Vec<u32>,
     leaves: usize,
     depth: u32,
 }
 
 impl Out {
-    fn with_capacity(nodes: usize) -> Out {
+    /// Room for a subtree over `refs` references (without spatial splits, exactly enough).
+    fn with_capacity(refs: usize) -> Out {
         Out {
-            nodes: Vec::with_capacity(nodes),
+            nodes: Vec::with_capacity(refs.saturating_sub(1)),
+            prim_ids: Vec::with_capacity(refs),
             leaves: 0,
             depth: 0,
         }
     }
 
-    /// Records a leaf over `prim_ids[first..first + count]` at `level`.
-    fn leaf(&mut self, first: u32, count: usize, level: u32) -> Child {
+    /// Appends a leaf over `refs` at `level`.
+    fn leaf(&mut self, refs: &[PrimRef], level: u32) -> Child {
+        let first = self.prim_ids.len() as u32;
+        self.prim_ids.extend(refs.iter().map(PrimRef::id));
         self.leaves += 1;
         self.depth = self.depth.max(level);
-        Child::leaf(first, count as u32)
+        Child::leaf(first, refs.len() as u32)
     }
 
-    /// Appends `other`'s nodes (shifting its inner references by where they land) and returns
-    /// `root`, a reference into `other`, as a reference into `self`.
+    /// Appends `other`'s nodes and ids (shifting its references by where they land) and
+    /// returns `root`, a reference into `other`, as a reference into `self`.
     fn append(&mut self, other: Out, root: Child) -> Child {
-        let offset = self.nodes.len() as u32;
-        let shift = move |c: Child| {
-            if c.is_leaf() {
-                c
-            } else {
-                Child::inner(c.index + offset)
-            }
+        let (nodes, ids) = (self.nodes.len() as u32, self.prim_ids.len() as u32);
+        let shift = move |c: Child| match c.is_leaf() {
+            true => Child::leaf(c.index + ids, c.count),
+            false => Child::inner(c.index + nodes),
         };
         self.nodes.extend(other.nodes.into_iter().map(|mut n| {
             n.children = n.children.map(shift);
             n
         }));
+        self.prim_ids.extend(other.prim_ids);
         self.leaves += other.leaves;
         self.depth = self.depth.max(other.depth);
         shift(root)
@@ -87,22 +96,35 @@ struct Ctx<'a> {
     cfg: &'a BuildConfig,
     /// Whether large subtrees build their children with `rayon::join`.
     parallel: bool,
+    spatial: Option<Spatial<'a>>,
 }
 
-/// Builds the tree over `refs` (non-empty; reordered into leaf order).
-pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
+/// Reusable bins of one build thread.
+#[derive(Default)]
+struct Scratch {
+    binned: binned::Scratch,
+    spatial: spatial::Scratch,
+}
+
+/// Builds the tree over `refs` (non-empty; reordered), with spatial splits over the primitives
+/// `clip` cuts when it is given.
+pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig, clip: Option<&dyn Clip>) -> Built {
     assert!(!refs.is_empty(), "the caller rejects empty scenes");
+    let boxes = bounds_and_centroids(&refs);
     let ctx = Ctx {
         cfg,
         parallel: rayon::current_num_threads() > 1,
+        spatial: clip.map(|c| Spatial::new(c, &boxes.0)),
     };
-    let boxes = bounds_and_centroids(&refs);
-    // A binary tree over n primitives has at most n - 1 inner nodes.
-    let mut out = Out::with_capacity(refs.len() - 1);
+    let budget = match ctx.spatial {
+        Some(_) => spatial::budget(refs.len(), cfg.split_budget),
+        None => 0,
+    };
+    let mut out = Out::with_capacity(refs.len());
     let root = subtree(
         &mut refs,
         boxes,
-        0,
+        budget,
         1,
         &ctx,
         &mut out,
@@ -112,19 +134,19 @@ pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig) -> Built {
         root_bounds: boxes.0,
         root,
         nodes: out.nodes,
-        prim_ids: refs.iter().map(|r| r.id()).collect(),
+        prim_ids: out.prim_ids,
         leaves: out.leaves,
         depth: out.depth,
     }
 }
 
-/// Builds the subtree over `refs`, whose bounds and centroid bounds are `boxes`, appending its
-/// inner nodes to `out` depth first; its primitives start at slot `first`; `level` counts from
-/// 1 at the root. Returns the reference to the subtree.
+/// Builds the subtree over `refs`, whose bounds and centroid bounds are `boxes` and which may
+/// make `budget` extra references by spatial splits, appending its inner nodes and ids to `out`
+/// depth first; `level` counts from 1 at the root. Returns the reference to the subtree.
 fn subtree(
     refs: &mut [PrimRef],
     boxes: (Aabb, Aabb),
-    first: u32,
+    budget: usize,
     level: u32,
     ctx: &Ctx,
     out: &mut Out,
@@ -134,52 +156,95 @@ fn subtree(
     let cfg = ctx.cfg;
     let (bounds, centroids) = boxes;
     if n == 1 || level == MAX_DEPTH {
-        return out.leaf(first, n, level);
+        return out.leaf(refs, level);
     }
+    // Nodes with fewer primitives than bins use one bin per primitive: the sweep over empty
+    // bins would cost more than the binning.
+    let bins = cfg.bins.min(n as u32).max(2);
     // (cost, mid, child boxes if the splitter computed them)
     let split = match cfg.split {
-        // Nodes with fewer primitives than bins use one bin per primitive: the sweep over empty
-        // bins would cost more than the binning.
-        SplitMethod::Binned => {
-            binned::split(refs, &centroids, cfg.bins.min(n as u32).max(2), scratch)
-                .map(|s| (s.cost, s.mid, Some((s.left, s.right))))
-        }
+        SplitMethod::Binned => binned::split(refs, &centroids, bins, &mut scratch.binned)
+            .map(|s| (s.cost, s.mid, Some([s.left, s.right]))),
         SplitMethod::Sweep => sweep::split(refs).map(|(cost, mid)| (cost, mid, None)),
     };
     let small = n <= cfg.leaf_size as usize;
-    let (mid, children) = match split {
-        Some((cost, mid, children)) => {
-            // SAH in units of one primitive test: leaf n, split cost_ratio + expected tests.
-            let area = bounds.surface_area();
-            let expected = if area > 0.0 { cost / area } else { 0.0 };
-            if small && n as f32 <= cfg.cost_ratio + expected {
-                return out.leaf(first, n, level);
-            }
-            (mid, children)
-        }
+    let (cost, mid, children) = match split {
+        Some((cost, mid, children)) => (Some(cost), mid, children),
         // Coincident centroids: no plane separates them; halve by count if too many.
-        None if small => return out.leaf(first, n, level),
-        None => (n / 2, None),
+        None if small => return out.leaf(refs, level),
+        None => (None, n / 2, None),
     };
+    let [lb, rb] = children.unwrap_or_else(|| {
+        let (l, r) = refs.split_at(mid);
+        [bounds_and_centroids(l), bounds_and_centroids(r)]
+    });
+    let spatial = ctx
+        .spatial
+        .as_ref()
+        .filter(|s| budget > 0 && s.worth_trying(&lb.0, &rb.0))
+        .and_then(|s| {
+            Some((
+                s,
+                s.find(refs, &bounds, bins, budget, &mut scratch.spatial)?,
+            ))
+        });
+    // SAH in units of one primitive test: leaf n, split cost_ratio + expected tests.
+    let area = bounds.surface_area();
+    let expected = |cost: f32| if area > 0.0 { cost / area } else { 0.0 };
+    let best = match (cost, spatial.map(|(_, c)| c.cost)) {
+        (Some(o), Some(s)) => Some(o.min(s)),
+        (o, s) => o.or(s),
+    };
+    if small && best.is_some_and(|c| n as f32 <= cfg.cost_ratio + expected(c)) {
+        return out.leaf(refs, level);
+    }
+    if let Some((s, c)) = spatial
+        && let Some([(mut l, lb), (mut r, rb)]) = s.apply(refs, &c, cost)
+    {
+        let extra = (l.len() + r.len()).saturating_sub(n);
+        let budgets = share(budget.saturating_sub(extra), l.len(), r.len());
+        return node(
+            [(&mut l, lb), (&mut r, rb)],
+            budgets,
+            level,
+            ctx,
+            out,
+            scratch,
+        );
+    }
     let (l, r) = refs.split_at_mut(mid);
-    let (lb, rb) = children.unwrap_or_else(|| (bounds_and_centroids(l), bounds_and_centroids(r)));
-    let right_first = first + mid as u32;
+    let budgets = share(budget, l.len(), r.len());
+    node([(l, lb), (r, rb)], budgets, level, ctx, out, scratch)
+}
+
+/// Appends the inner node at `level` over the two children `kids` (their references, bounds
+/// and centroid bounds), builds their subtrees with `budgets` extra references, and returns
+/// its reference.
+fn node(
+    kids: [(&mut [PrimRef], (Aabb, Aabb)); 2],
+    budgets: [usize; 2],
+    level: u32,
+    ctx: &Ctx,
+    out: &mut Out,
+    scratch: &mut Scratch,
+) -> Child {
+    let [(l, lb), (r, rb)] = kids;
     let at = out.nodes.len();
     out.nodes
         .push(Node::new([lb.0, rb.0], [Child::default(); 2]));
-    let children = if ctx.parallel && n >= PARALLEL_MIN {
-        let mut right = Out::with_capacity(r.len() - 1);
+    let children = if ctx.parallel && l.len() + r.len() >= PARALLEL_MIN {
+        let mut right = Out::with_capacity(r.len());
         let (a, b) = rayon::join(
-            || subtree(l, lb, first, level + 1, ctx, out, scratch),
+            || subtree(l, lb, budgets[0], level + 1, ctx, out, scratch),
             || {
                 let mut scratch = Scratch::default();
-                subtree(r, rb, right_first, level + 1, ctx, &mut right, &mut scratch)
+                subtree(r, rb, budgets[1], level + 1, ctx, &mut right, &mut scratch)
             },
         );
         [a, out.append(right, b)]
     } else {
-        let a = subtree(l, lb, first, level + 1, ctx, out, scratch);
-        [a, subtree(r, rb, right_first, level + 1, ctx, out, scratch)]
+        let a = subtree(l, lb, budgets[0], level + 1, ctx, out, scratch);
+        [a, subtree(r, rb, budgets[1], level + 1, ctx, out, scratch)]
     };
     out.nodes[at].children = children;
     Child::inner(at as u32)
@@ -239,7 +304,7 @@ mod tests {
         let input = refs(3000);
         for p in Preset::ALL {
             let cfg = BvhParams::preset(p).config().unwrap();
-            let built = build(input.clone(), &cfg);
+            let built = build(input.clone(), &cfg, None);
             check(&built, &input, cfg.leaf_size);
             assert!(built.depth < 40, "{}: depth {}", p.name(), built.depth);
         }
@@ -255,8 +320,8 @@ mod tests {
                 .build()
                 .unwrap()
         };
-        let serial = pool(1).install(|| build(input.clone(), &cfg));
-        let parallel = pool(2).install(|| build(input.clone(), &cfg));
+        let serial = pool(1).install(|| build(input.clone(), &cfg, None));
+        let parallel = pool(2).install(|| build(input.clone(), &cfg, None));
         assert_eq!(serial.prim_ids, parallel.prim_ids);
         let key = |b: &Built| -> Vec<_> {
             b.nodes
@@ -282,7 +347,7 @@ mod tests {
             .collect();
         for p in Preset::ALL {
             let cfg = BvhParams::preset(p).config().unwrap();
-            let built = build(input.clone(), &cfg);
+            let built = build(input.clone(), &cfg, None);
             check(&built, &input, cfg.leaf_size);
         }
     }

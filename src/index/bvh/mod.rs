@@ -3,12 +3,13 @@
 //! termination, and any-hit.
 //!
 //! - [`params`]: presets and overrides; `build`: the builder (straight into the node array), with the SAH
-//!   split finders in `binned` and `sweep`; `node`: the node layout; `slab`: the two-box slab
+//!   split finders in `binned` and `sweep`, and the spatial splits (SBVH, an option) in `spatial`; `node`: the node layout; `slab`: the two-box slab
 //!   test (over the SIMD registers of `lanes`); `traverse`: the node step; `walk`: the traversal
 //!   loop and `leaves` the leaf tests (both shared with the wide BVH); `packet`: the packet walk
 //!   (shared too) over `packet_slab`, the slab test of one box against a packet of rays.
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
-//!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids.
+//!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids. With
+//!   spatial splits an id may occur in several leaves; the hits stay exact (see `spatial`).
 
 mod binned;
 mod build;
@@ -20,6 +21,7 @@ pub(crate) mod packet_slab;
 pub mod params;
 mod prim_ref;
 pub(crate) mod slab;
+mod spatial;
 mod sweep;
 mod traverse;
 pub(crate) mod walk;
@@ -43,6 +45,8 @@ pub struct Bvh {
     prim_ids: Vec<u32>,
     leaves: usize,
     depth: u32,
+    /// Primitives of the scene (with spatial splits, fewer than `prim_ids`).
+    prims: usize,
     /// SAH cost of the tree (expected node visits times the cost ratio plus primitive tests,
     /// for a ray that hits the root box), a quality figure for reports.
     sah_cost: f64,
@@ -76,7 +80,8 @@ impl Index for Bvh {
                 bad.bounds()
             )));
         }
-        let built = build::build(refs, &cfg);
+        let clip: &dyn spatial::Clip = geom;
+        let built = build::build(refs, &cfg, cfg.spatial_splits.then_some(clip));
         let sah_cost = sah_cost(&built, cfg.cost_ratio);
         Ok(Bvh {
             root_bounds: built.root_bounds,
@@ -85,6 +90,7 @@ impl Index for Bvh {
             prim_ids: built.prim_ids,
             leaves: built.leaves,
             depth: built.depth,
+            prims: geom.len(),
             sah_cost,
         })
     }
@@ -103,7 +109,7 @@ impl Index for Bvh {
             extra: vec![
                 (
                     "bytes_per_prim".into(),
-                    memory_bytes as f64 / self.prim_ids.len() as f64,
+                    memory_bytes as f64 / self.prims as f64,
                 ),
                 ("sah_cost".into(), self.sah_cost),
             ],

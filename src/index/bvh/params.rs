@@ -8,6 +8,8 @@ use serde::{Deserialize, Serialize};
 pub const BINS: std::ops::RangeInclusive<u32> = 2..=64;
 /// Largest leaf size accepted (primitives per leaf).
 pub const MAX_LEAF_SIZE: u32 = 64;
+/// Accepted references per primitive with spatial splits (`split_budget`).
+pub const SPLIT_BUDGET: std::ops::RangeInclusive<f32> = 1.0..=64.0;
 /// Largest traversal/intersection cost ratio accepted.
 pub const MAX_COST_RATIO: f32 = 1000.0;
 
@@ -66,6 +68,8 @@ impl Preset {
             bins,
             leaf_size,
             cost_ratio: 1.0,
+            spatial_splits: false,
+            split_budget: 4.0,
         };
         match self {
             Preset::Fastest => binned(8, 8),
@@ -100,6 +104,15 @@ pub struct BvhParams {
     /// Cost of one node traversal relative to one primitive test, in `(0, `[`MAX_COST_RATIO`]`]`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cost_ratio: Option<f32>,
+    /// Spatial splits (SBVH, Stich et al. 2009): nodes whose object split leaves overlapping
+    /// children may instead cut their primitives at a plane, so a primitive can be referenced
+    /// by several leaves (see `spatial`). Off by default.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub spatial_splits: bool,
+    /// With spatial splits, most references per primitive in the tree (memory bound), in
+    /// [`SPLIT_BUDGET`]; default 4 (the `slivers` scene needs 4 for `bvh8` to beat the grid).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub split_budget: Option<f32>,
 }
 
 /// Checked build settings.
@@ -109,6 +122,8 @@ pub struct BuildConfig {
     pub bins: u32,
     pub leaf_size: u32,
     pub cost_ratio: f32,
+    pub spatial_splits: bool,
+    pub split_budget: f32,
 }
 
 impl BvhParams {
@@ -129,6 +144,17 @@ impl BvhParams {
         let mut c = self.preset.config();
         if let Some(split) = self.split {
             c.split = split;
+        }
+        c.spatial_splits = self.spatial_splits;
+        if let Some(b) = self.split_budget {
+            if !SPLIT_BUDGET.contains(&b) {
+                return Err(bad(format!(
+                    "split_budget = {b} is out of range: use {} to {} references per primitive",
+                    SPLIT_BUDGET.start(),
+                    SPLIT_BUDGET.end()
+                )));
+            }
+            c.split_budget = b;
         }
         if let Some(bins) = self.bins {
             if !BINS.contains(&bins) {
@@ -192,6 +218,10 @@ mod tests {
             },
             BvhParams {
                 cost_ratio: Some(-1.0),
+                ..BvhParams::default()
+            },
+            BvhParams {
+                split_budget: Some(0.5),
                 ..BvhParams::default()
             },
         ] {

@@ -4,7 +4,9 @@
 //!
 //! - `node`: the node layout and the collapse; `traverse`: the node step of the traversal loop
 //!   shared with the binary BVH (`bvh::walk`).
-//! - The parameters are the binary BVH's ([`BvhParams`]): the leaves are its leaves.
+//! - The parameters are the binary BVH's ([`BvhParams`]): the leaves are its leaves. With its
+//!   spatial splits a primitive may be in several leaves (a merged leaf may even name it
+//!   twice): every copy returns the same `t` for the same id, so the hits do not change.
 //! - Leaves of triangle-only scenes hold copies of their triangles in blocks of four, tested
 //!   lane-wise by the kernel's lane form; other scenes' leaves hold primitive ids
 //!   ([`LeafStore`], shared with the binary BVH).
@@ -29,7 +31,10 @@ pub struct WideBvh<const C: usize> {
     root: Child,
     nodes: Vec<WideNode<C>>,
     leaf_store: LeafStore,
+    /// Primitive ids in the leaves (with spatial splits, more than `prims`).
     prim_refs: usize,
+    /// Primitives of the scene.
+    prims: usize,
     leaves: usize,
     depth: u32,
 }
@@ -70,6 +75,7 @@ impl<const C: usize> Index for WideBvh<C> {
             nodes: wide.nodes,
             leaf_store,
             prim_refs: prim_ids.len(),
+            prims: geom.len(),
             leaves: wide.leaves,
             depth: wide.depth,
         })
@@ -91,7 +97,7 @@ impl<const C: usize> Index for WideBvh<C> {
             extra: vec![
                 (
                     "bytes_per_prim".into(),
-                    memory_bytes as f64 / self.prim_refs as f64,
+                    memory_bytes as f64 / self.prims as f64,
                 ),
                 ("leaf_blocks".into(), self.leaf_store.blocks() as f64),
                 (
