@@ -150,15 +150,18 @@ proptest! {
             spheres: Arc::from(spheres.as_slice()),
             ..SceneGeometry::default()
         };
-        for name in index_names() {
-            let m = verify_against_brute(
-                &IndexSpec::named(name),
-                &geom,
-                kernel,
-                &rays,
-            )
-            .map_err(|e| TestCaseError::fail(format!("{name} ({kernel}): {e}")))?;
-            if is_peer(name) {
+        // Every registered index, and the BVHs with spatial splits (primitives in several
+        // leaves, cut at one-primitive leaves so the small scenes split too).
+        let spatial = ["bvh", "bvh4", "bvh8"]
+            .map(|n| format!("{n}:spatial_splits=true,leaf_size=1,split_budget=8"));
+        let names = index_names().into_iter().map(String::from).chain(spatial);
+        for name in names {
+            let spec: IndexSpec = name
+                .parse()
+                .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
+            let m = verify_against_brute(&spec, &geom, kernel, &rays)
+                .map_err(|e| TestCaseError::fail(format!("{name} ({kernel}): {e}")))?;
+            if is_peer(&name) {
                 if !m.is_empty() {
                     eprintln!("peer {name}: {} of {} rays mismatch", m.len(), rays.len());
                 }
