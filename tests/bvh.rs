@@ -7,7 +7,7 @@
 mod common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::harness::verify::{compare_closest, compare_with_expected};
+use accelbench::harness::verify::compare_closest;
 use accelbench::index::bvh::{BvhParams, MAX_DEPTH, Preset};
 use accelbench::index::{
     BuildError, Counters, IndexInfo, IndexSpec, TraceIndex, TraceMode, build_index,
@@ -303,18 +303,10 @@ fn spatial_specs() -> Vec<String> {
         .collect()
 }
 
-/// Asserts that every spatial-split variant returns brute force's hits (closest bit for bit,
-/// any-hit) on `rays` over `scene` with `kernel` (brute force traced once).
+/// Asserts that every spatial-split variant returns brute force's hits on `rays` over `scene`
+/// with `kernel`.
 fn assert_spatial_agrees(scene: &Scene, kernel: TriangleKernelKind, rays: &[Ray]) {
-    let geom = scene.geometry();
-    let brute = build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
-    let mut expected = vec![None; rays.len()];
-    brute.closest_hits(rays, &mut expected);
-    for spec in spatial_specs() {
-        let index = build_index(&spec.parse().unwrap(), &geom, kernel).unwrap();
-        let m = compare_with_expected(index.as_ref(), rays, &expected);
-        common::assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
-    }
+    common::assert_specs_agree(&spatial_specs(), scene, kernel, rays);
 }
 
 #[test]
@@ -445,9 +437,7 @@ fn spatial_splits_happen_on_slivers_and_the_build_is_deterministic() {
 #[test]
 fn cli_sweep_bvh_writes_csv_and_charts() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("sweep");
-    let o = common::cli::accelbench(&[
-        "sweep",
+    let args = [
         "bvh",
         "--scene",
         "slivers:n=300",
@@ -455,25 +445,15 @@ fn cli_sweep_bvh_writes_csv_and_charts() {
         "24",
         "--repeats",
         "1",
-        "--trees",
-        "bvh,bvh8",
-        "--split-budget",
-        "1,4",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
+    ];
+    let points = ["--trees", "bvh,bvh8", "--split-budget", "1,4"];
+    let csv = common::cli::sweep_ok(&[&args[..], &points].concat(), &dir.path().join("sweep"));
     assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
     assert!(
         csv.lines()
             .any(|l| l.contains("bvh8") && l.contains("split_budget=4")),
         "{csv}"
     );
-    for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
-        assert!(out.join(f).exists(), "{f}");
-    }
-    let bad = common::cli::accelbench(&["sweep", "bvh", "--scene", "soup", "--split-budget=0.5"]);
-    assert!(!bad.status.success());
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("split-budget"));
+    let bad = ["sweep", "bvh", "--scene", "soup", "--split-budget=0.5"];
+    common::cli::accelbench_fails(&bad, &["split-budget"]);
 }

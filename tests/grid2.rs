@@ -154,9 +154,7 @@ fn bad_parameters_are_typed_errors() {
 #[test]
 fn cli_sweep_grid2_writes_csv_and_charts() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("sweep");
-    let o = common::cli::accelbench(&[
-        "sweep",
+    let args = [
         "grid2",
         "--scene",
         "soup:n=1000",
@@ -164,25 +162,17 @@ fn cli_sweep_grid2_writes_csv_and_charts() {
         "24",
         "--repeats",
         "1",
-        "--top-lambda",
-        "0.05,0.5",
-        "--lambda",
-        "1,4",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
+    ];
+    let points = ["--top-lambda", "0.05,0.5", "--lambda", "1,4"];
+    let csv = common::cli::sweep_ok(&[&args[..], &points].concat(), &dir.path().join("sweep"));
     assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
     assert!(
         csv.lines()
             .any(|l| l.contains("top_lambda=0.5") && l.contains("lambda=4")),
         "{csv}"
     );
-    for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
-        assert!(out.join(f).exists(), "{f}");
-    }
-    let bad = common::cli::accelbench(&["sweep", "grid2", "--scene", "soup", "--lambda=0"]);
-    assert!(!bad.status.success());
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("lambda"));
+    common::cli::accelbench_fails(
+        &["sweep", "grid2", "--scene", "soup", "--lambda=0"],
+        &["lambda"],
+    );
 }

@@ -5,8 +5,7 @@
 mod common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::harness::verify::compare_with_expected;
-use accelbench::index::{Bvh4, Bvh8, BvhParams, Index, IndexSpec, build_index};
+use accelbench::index::{Bvh4, Bvh8, BvhParams, Index};
 use accelbench::scene::{Scene, Triangles, generators};
 
 /// Leaf sizes 1..=8 and node widths 2..=`max_children` all occur in the wide trees of the
@@ -62,20 +61,11 @@ fn specs() -> Vec<String> {
     s
 }
 
-/// Asserts that every spec of [`specs`] returns brute force's hits (closest bit for bit,
-/// any-hit) on `rays` over `scene` with the watertight and the exact kernel (brute force traced
-/// once per kernel).
+/// Asserts that every spec of [`specs`] returns brute force's hits on `rays` over `scene` with
+/// the watertight and the exact kernel.
 fn assert_specs_agree(scene: &Scene, rays: &[Ray]) {
-    let geom = scene.geometry();
     for kernel in [TriangleKernelKind::Watertight, TriangleKernelKind::Exact] {
-        let brute = build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
-        let mut expected = vec![None; rays.len()];
-        brute.closest_hits(rays, &mut expected);
-        for spec in specs() {
-            let index = build_index(&spec.parse().unwrap(), &geom, kernel).unwrap();
-            let m = compare_with_expected(index.as_ref(), rays, &expected);
-            common::assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
-        }
+        common::assert_specs_agree(&specs(), scene, kernel, rays);
     }
 }
 

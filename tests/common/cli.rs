@@ -37,6 +37,19 @@ pub fn accelbench_fails(args: &[&str], expected: &[&str]) {
     assert!(!err.contains("panicked"), "{args:?} panicked:\n{err}");
 }
 
+/// Runs `accelbench sweep` with `args` and `--out out`, asserts a zero exit and that both
+/// charts of the primary rays were written, and returns `primary.csv`.
+pub fn sweep_ok(args: &[&str], out: &std::path::Path) -> String {
+    let mut all = vec!["sweep"];
+    all.extend_from_slice(args);
+    all.extend(["--out", out.to_str().unwrap()]);
+    accelbench_ok(&all);
+    for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    std::fs::read_to_string(out.join("primary.csv")).unwrap()
+}
+
 /// `../shared/meshes/<name>` when present; otherwise `None`, with a line saying the test part
 /// that needs it is skipped.
 pub fn shared_mesh(name: &str) -> Option<PathBuf> {

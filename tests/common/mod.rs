@@ -11,7 +11,7 @@ pub mod grid_rays;
 
 use accelbench::geometry::Hit;
 use accelbench::geometry::{Ray, TriangleKernelKind};
-use accelbench::harness::verify::{Mismatch, verify_against_brute};
+use accelbench::harness::verify::{Mismatch, compare_with_expected, verify_against_brute};
 use accelbench::index::{IndexSpec, TraceIndex, build_index};
 use accelbench::rays::{incoherent_rays, primary_rays};
 use accelbench::scene::{Scene, generators};
@@ -108,6 +108,25 @@ pub fn assert_agrees(spec: &str, scene: &Scene, rays: &[Ray]) {
 fn assert_agrees_with(spec: &IndexSpec, kernel: TriangleKernelKind, scene: &Scene, rays: &[Ray]) {
     let m = verify_against_brute(spec, &scene.geometry(), kernel, rays).unwrap();
     assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
+}
+
+/// Asserts that every index of `specs` returns brute force's hits on `rays` over `scene` with
+/// `kernel` ([`compare_with_expected`]); brute force is traced once for all of them.
+pub fn assert_specs_agree(
+    specs: &[String],
+    scene: &Scene,
+    kernel: TriangleKernelKind,
+    rays: &[Ray],
+) {
+    let geom = scene.geometry();
+    let brute = build_index(&IndexSpec::named("brute"), &geom, kernel).unwrap();
+    let mut expected = vec![None; rays.len()];
+    brute.closest_hits(rays, &mut expected);
+    for spec in specs {
+        let index = build_index(&spec.parse().unwrap(), &geom, kernel).unwrap();
+        let m = compare_with_expected(index.as_ref(), rays, &expected);
+        assert_no_mismatch(&format!("{spec} ({kernel})"), scene, rays.len(), &m);
+    }
 }
 
 /// Fails with the first three mismatches when `m` is not empty (`what`: index and kernel).
