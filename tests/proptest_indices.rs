@@ -151,18 +151,9 @@ proptest! {
             ..SceneGeometry::default()
         };
         // Every registered index, and the BVHs with spatial splits (primitives in several
-        // leaves, cut at one-primitive leaves so the small scenes split too) with the kernels
-        // whose hit point lies on the triangle within the splits' padding (`bvh::spatial`).
-        // KNOWN BUG, open in issue 15: with the Moller-Trumbore, parametric and plane-edges
-        // kernels, random scenes with degenerate triangles break ties differently.
-        let exact_point = matches!(
-            kernel,
-            TriangleKernelKind::Watertight | TriangleKernelKind::Exact
-        );
+        // leaves, cut at one-primitive leaves so the small scenes split too).
         let spatial = ["bvh", "bvh4", "bvh8"]
-            .map(|n| format!("{n}:spatial_splits=true,leaf_size=1,split_budget=8"))
-            .into_iter()
-            .filter(|_| exact_point);
+            .map(|n| format!("{n}:spatial_splits=true,leaf_size=1,split_budget=8"));
         let names = index_names().into_iter().map(String::from).chain(spatial);
         for name in names {
             let spec: IndexSpec = name

@@ -20,6 +20,7 @@ pub use watertight::Watertight;
 
 pub(crate) use super::real::in_interval;
 
+use super::float::cross;
 use super::real::{KernelRay, RealVec};
 use super::{Aabb, Ray};
 use glam::Vec3A;
@@ -53,7 +54,7 @@ impl Triangle {
     /// Geometric normal `(v1 - v0) x (v2 - v0)`, not normalized (length = twice the area).
     #[inline]
     pub fn normal_unnormalized(&self) -> Vec3A {
-        (self.v[1] - self.v[0]).cross(self.v[2] - self.v[0])
+        cross(self.v[1] - self.v[0], self.v[2] - self.v[0])
     }
 
     /// Unit geometric normal; zero for a degenerate triangle.
@@ -78,8 +79,8 @@ impl Triangle {
         if nn == 0.0 {
             return Vec3A::ZERO;
         }
-        let b1 = (p - self.v[0]).cross(self.v[2] - self.v[0]).dot(n) / nn;
-        let b2 = (self.v[1] - self.v[0]).cross(p - self.v[0]).dot(n) / nn;
+        let b1 = cross(p - self.v[0], self.v[2] - self.v[0]).dot(n) / nn;
+        let b2 = cross(self.v[1] - self.v[0], p - self.v[0]).dot(n) / nn;
         Vec3A::new(1.0 - b1 - b2, b1, b2)
     }
 }
@@ -190,6 +191,93 @@ mod tests {
 
     fn all(ray: &Ray) -> [Option<f32>; 5] {
         TriangleKernelKind::ALL.map(|k| k.intersect(&tri(), ray, ray.t_max))
+    }
+
+    #[test]
+    fn a_triangle_with_two_equal_corners_is_degenerate_and_never_hit() {
+        // Found by the property test through the grid: with glam's cross product fused (FMA
+        // builds), this segment got the normal (-6e-8, -6e-8, 0) and plane-edges hit it at
+        // (0, 1, -0.494), 1.1 away from the segment, in a cell the segment never touches.
+        let t = Triangle::from_corners(
+            [0.0, 1.0, 0.653_411_15],
+            [-0.75, 0.25, -1.823_173],
+            [-0.75, 0.25, -1.823_173],
+        );
+        assert!(t.is_degenerate());
+        assert_eq!(t.normal(), Vec3A::ZERO);
+        let o = Vec3::new(0.0, 4.0, f32::from_bits(0xbefd_1718));
+        let r = Ray::infinite(o, -Vec3::Y).unwrap();
+        for k in TriangleKernelKind::ALL {
+            assert_eq!(k.intersect(&t, &r, r.t_max), None, "{k}");
+        }
+    }
+
+    /// The ray of a `.rays` record given as bits (origin, `t_min`, direction, `t_max`).
+    fn ray_from_bits(b: [u32; 8]) -> Ray {
+        let f = b.map(f32::from_bits);
+        let (o, d) = (Vec3::new(f[0], f[1], f[2]), Vec3::new(f[4], f[5], f[6]));
+        Ray::new(o, d, f[3], f[7]).unwrap()
+    }
+
+    /// Distance from `p` to the segment `[a, b]`, in f64.
+    fn distance_to_segment(p: Vec3A, a: Vec3A, b: Vec3A) -> f64 {
+        let (p, a, b) = (p.as_dvec3(), a.as_dvec3(), b.as_dvec3());
+        let ab = b - a;
+        let s = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        (a + ab * s - p).length()
+    }
+
+    #[test]
+    fn zero_area_triangles_in_the_rays_plane_are_never_hit_off_the_triangle() {
+        // Found by the property test through the spatial-split BVHs and the grid: rays aimed
+        // at a vertex, so the ray lies in the zero-area triangle's line. Moller-Trumbore and
+        // parametric divided rounding noise by rounding noise and hit at a random `t`, 0.1 to 1
+        // away from the segment. (corners, ray bits)
+        #[rustfmt::skip]
+        let cases = [
+            (
+                [[0.5, 0.0, 0.0], [0.75, 0.915_031_4, -1.0], [0.75, 0.915_031_4, -1.0]],
+                [
+                    0xbfbd_c24c, 0x3f00_0000, 0xbf11_dd99, 0, 0x400e_e126, 0x3ed4_7efe, 0xbedc_44ce,
+                    0x7f80_0000,
+                ],
+            ),
+            (
+                // Three collinear corners: the third is the midpoint of the first two.
+                [
+                    [0.461_141_8, 0.75, 1.911_677_6],
+                    [-0.5, 1.927_118_9, 0.0],
+                    [-0.019_429_103, 1.338_559_4, 0.955_838_8],
+                ],
+                [
+                    0x405a_abfa, 0x3fd0_d13a, 0xbf00_0000, 0x3f8f_9d65, 0xc05b_ea4e, 0xbe95_ed40,
+                    0x3fba_58ed, 0x401e_33cf,
+                ],
+            ),
+            (
+                // Collinear up to one rounding: its determinant passed `certainly_nonzero`.
+                [
+                    [0.0, 0.071_558_38, 1.129_651_7],
+                    [0.368_695_14, -0.873_586_9, 1.076_438],
+                    [0.184_347_57, -0.401_014_27, 1.103_044_7],
+                ],
+                [
+                    0xbf80_0000, 0xc007_c593, 0x3f80_0000, 0x3f82_0f13, 0x3f97_98b4, 0x3fdc_36b6,
+                    0x3dd3_0920, 0x4089_080e,
+                ],
+            ),
+        ];
+        for ([a, b, c], bits) in cases {
+            let t = Triangle::from_corners(a, b, c);
+            let r = ray_from_bits(bits);
+            for k in TriangleKernelKind::ALL {
+                if let Some(hit) = k.intersect(&t, &r, r.t_max) {
+                    let p = r.at(hit);
+                    let d = distance_to_segment(p, t.v[0], t.v[1]);
+                    assert!(d < 1e-5, "{k}: hit at t {hit}, {d} off the triangle");
+                }
+            }
+        }
     }
 
     #[test]

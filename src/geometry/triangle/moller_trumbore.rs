@@ -1,9 +1,14 @@
 //! Möller–Trumbore (1997): Cramer's rule on `o + t d = v0 + u e1 + v e2` with the triple
 //! products sharing `p = d x e2` and `q = s x e1`. Fast, not watertight: rays through shared
-//! edges can slip between the two triangles.
+//! edges can slip between the two triangles. A hit is kept only when the determinant is
+//! certainly nonzero and the ray's point agrees with the barycentric point `v0 + u e1 + w e2`
+//! ([`certainly_nonzero`](crate::geometry::real::certainly_nonzero),
+//! [`on_triangle`](crate::geometry::real::on_triangle)): otherwise it is rounding noise.
 
 use super::RealKernel;
-use crate::geometry::real::{KernelRay, Real, RealVec, in_interval};
+use crate::geometry::real::{
+    KernelRay, Real, RealVec, certainly_nonzero, in_interval, on_triangle,
+};
 
 impl RealKernel for MollerTrumbore {
     const NAME: &'static str = "moller-trumbore";
@@ -28,7 +33,11 @@ impl RealKernel for MollerTrumbore {
         if w < R::Scalar::ZERO || u + w > R::Scalar::ONE {
             return None;
         }
-        in_interval(e2.dot(q) * inv_det, ray, t_max)
+        let t = in_interval(e2.dot(q) * inv_det, ray, t_max)?;
+        if !certainly_nonzero(det, e1, ray.dir(), e2) {
+            return None;
+        }
+        on_triangle(t, ray, v[0] + e1 * u + e2 * w)
     }
 }
 

@@ -1,10 +1,15 @@
 //! The parametric (alpha/beta) test of the course (Shirley's textbook): solve the 3x3 system
 //! `a + beta (b - a) + gamma (c - a) = o + t d` by Cramer's rule, then require `beta >= 0`,
 //! `gamma >= 0`, `beta + gamma <= 1`. Each unknown is its own determinant ratio (no shared
-//! cross products), which makes it the slowest of the four.
+//! cross products), which makes it the slowest of the four. A hit is kept only when the
+//! determinant is certainly nonzero and the ray's point agrees with the barycentric point
+//! ([`certainly_nonzero`](crate::geometry::real::certainly_nonzero),
+//! [`on_triangle`](crate::geometry::real::on_triangle)): otherwise it is rounding noise.
 
 use super::RealKernel;
-use crate::geometry::real::{KernelRay, Real, RealVec, in_interval};
+use crate::geometry::real::{
+    KernelRay, Real, RealVec, certainly_nonzero, in_interval, on_triangle,
+};
 
 impl RealKernel for Parametric {
     const NAME: &'static str = "parametric";
@@ -28,7 +33,12 @@ impl RealKernel for Parametric {
         if gamma < R::Scalar::ZERO || beta + gamma > R::Scalar::ONE {
             return None;
         }
-        in_interval(c0.dot(c1.cross(rhs)) / det, ray, t_max)
+        let t = in_interval(c0.dot(c1.cross(rhs)) / det, ray, t_max)?;
+        if !certainly_nonzero(det, c0, c1, c2) {
+            return None;
+        }
+        // `a + beta (b - a) + gamma (c - a)`.
+        on_triangle(t, ray, v[0] - c0 * beta - c1 * gamma)
     }
 }
 
