@@ -115,7 +115,8 @@ impl<S: Real> Shear<S> {
 /// corners) the true determinant is zero whatever the ray, and the computed one is rounding
 /// noise; dividing by it put hits anywhere on the ray, far from the triangle and from every
 /// cell, box or clipped piece that holds it, where no spatial index could find them. A sound
-/// triangle fails only for rays within about `1e-7` (relative) of its plane.
+/// triangle fails only when `|det|` is within `4 eps` (about `5e-7`) of `|a| . (|b| x+ |c|)`,
+/// i.e. for rays within about that angle of its plane.
 #[inline(always)]
 pub fn certainly_nonzero<V: RealVec>(det: V::Scalar, a: V, b: V, c: V) -> bool {
     let (a, b, c) = (a.abs(), b.abs(), c.abs());

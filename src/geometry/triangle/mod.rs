@@ -231,8 +231,8 @@ mod tests {
     fn zero_area_triangles_in_the_rays_plane_are_never_hit_off_the_triangle() {
         // Found by the property test through the spatial-split BVHs and the grid: rays aimed
         // at a vertex, so the ray lies in the zero-area triangle's line. Moller-Trumbore and
-        // parametric divided rounding noise by rounding noise and hit at a random `t`, 0.1 to 1
-        // away from the segment. (corners, ray bits)
+        // parametric divided rounding noise by rounding noise and hit at a random `t`, 0.07 to
+        // 2.1 away from the segment. (corners, ray bits)
         #[rustfmt::skip]
         let cases = [
             (
