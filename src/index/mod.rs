@@ -12,6 +12,7 @@ pub mod bvh;
 pub mod embree_peer;
 pub mod grid;
 pub mod grid2;
+pub mod huge_pages;
 pub mod kdtree;
 pub mod last_hit;
 pub mod mailbox;

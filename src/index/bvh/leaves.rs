@@ -15,6 +15,7 @@
 use super::node::Child;
 use crate::geometry::triangle::lanes::TriangleBlock;
 use crate::geometry::{ClosestHit, Ray, Triangle};
+use crate::index::huge_pages::huge_page_vec;
 use crate::index::{Stats, prim_test};
 use crate::scene::Geometry;
 
@@ -43,15 +44,15 @@ impl LeafStore {
     }
 
     /// Triangle blocks when `tris` (from [`LeafStore::block_triangles`]) is `Some`, else the
-    /// ids. `leaves` are every leaf reference of the tree over `prim_ids`; with blocks their
-    /// `index` is rewritten to the leaf's first block.
+    /// ids, either on huge pages ([`huge_page_vec`]). `leaves` are every leaf reference of the
+    /// tree over `prim_ids`; with blocks their `index` is rewritten to the leaf's first block.
     pub fn new<'c>(
         prim_ids: Vec<u32>,
         tris: Option<Vec<Triangle>>,
         leaves: impl IntoIterator<Item = &'c mut Child>,
     ) -> LeafStore {
         let Some(tris) = tris else {
-            return LeafStore::Ids(prim_ids);
+            return LeafStore::Ids(huge_page_vec(&prim_ids));
         };
         let mut blocks = Vec::with_capacity(prim_ids.len().div_ceil(BLOCK_LANES as usize));
         for leaf in leaves {
@@ -64,7 +65,7 @@ impl LeafStore {
                 blocks.push(TriangleBlock::new(t, ids));
             }
         }
-        LeafStore::Blocks(blocks)
+        LeafStore::Blocks(huge_page_vec(&blocks))
     }
 
     pub fn leaves(&self) -> Leaves<'_> {

@@ -29,6 +29,7 @@ pub(crate) mod walk;
 pub use build::MAX_DEPTH;
 pub use params::{BvhParams, Preset, SplitMethod};
 
+use super::huge_pages::huge_page_vec;
 use super::{BuildError, Index, IndexInfo};
 use crate::geometry::Aabb;
 use crate::scene::Geometry;
@@ -56,6 +57,40 @@ impl Index for Bvh {
     type Params = BvhParams;
 
     fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
+        let mut bvh = Bvh::build_tree(geom, params)?;
+        bvh.nodes = huge_page_vec(&bvh.nodes);
+        bvh.prim_ids = huge_page_vec(&bvh.prim_ids);
+        Ok(bvh)
+    }
+
+    walk::tree_queries!();
+
+    fn info(&self) -> IndexInfo {
+        let memory_bytes =
+            size_of::<Aabb>() + self.nodes.len() * size_of::<Node>() + self.prim_ids.len() * 4;
+        IndexInfo {
+            nodes: self.nodes.len() + self.leaves,
+            leaves: self.leaves,
+            depth: self.depth as usize,
+            memory_bytes,
+            prim_refs: self.prim_ids.len(),
+            extra: vec![
+                (
+                    "bytes_per_prim".into(),
+                    memory_bytes as f64 / self.prims as f64,
+                ),
+                ("sah_cost".into(), self.sah_cost),
+            ],
+            ..IndexInfo::default()
+        }
+    }
+}
+
+impl Bvh {
+    /// The tree in ordinary memory: what [`Index::build`] builds before it moves the arrays to
+    /// huge pages ([`huge_page_vec`]), and what the wide BVH collapses (it keeps only its own
+    /// arrays).
+    pub(crate) fn build_tree<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Bvh, BuildError> {
         let cfg = params.config()?;
         if geom.is_empty() {
             return Err(BuildError::EmptyScene);
@@ -95,30 +130,6 @@ impl Index for Bvh {
         })
     }
 
-    walk::tree_queries!();
-
-    fn info(&self) -> IndexInfo {
-        let memory_bytes =
-            size_of::<Aabb>() + self.nodes.len() * size_of::<Node>() + self.prim_ids.len() * 4;
-        IndexInfo {
-            nodes: self.nodes.len() + self.leaves,
-            leaves: self.leaves,
-            depth: self.depth as usize,
-            memory_bytes,
-            prim_refs: self.prim_ids.len(),
-            extra: vec![
-                (
-                    "bytes_per_prim".into(),
-                    memory_bytes as f64 / self.prims as f64,
-                ),
-                ("sah_cost".into(), self.sah_cost),
-            ],
-            ..IndexInfo::default()
-        }
-    }
-}
-
-impl Bvh {
     /// The root's box and reference, the inner nodes and the primitive ids in leaf order (for
     /// the wide BVH, which collapses this tree).
     pub(crate) fn parts(&self) -> (Aabb, Child, &[Node], &[u32]) {

@@ -3,6 +3,7 @@
 //! compressed rows (one offset per cell into one id array).
 
 use super::layout::Layout;
+use crate::index::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -90,8 +91,8 @@ pub fn fill_cells_with<G: Geometry>(
         *slot += 1;
     }
     Ok(Cells {
-        offsets: offsets.into_boxed_slice(),
-        prims: prims.into_boxed_slice(),
+        offsets: huge_page_vec(&offsets).into_boxed_slice(),
+        prims: huge_page_vec(&prims).into_boxed_slice(),
     })
 }
 

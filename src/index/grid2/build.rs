@@ -5,6 +5,7 @@
 use crate::index::grid::{
     Cells, Layout, MAX_REFS, fill_cells, fill_cells_with, heuristic_resolution,
 };
+use crate::index::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use rayon::prelude::*;
 
@@ -101,8 +102,8 @@ pub fn build_levels<G: Geometry>(
         top_cells,
         inner,
         cells: Cells {
-            offsets: offsets.into_boxed_slice(),
-            prims: prims.into_boxed_slice(),
+            offsets: huge_page_vec(&offsets).into_boxed_slice(),
+            prims: huge_page_vec(&prims).into_boxed_slice(),
         },
     })
 }

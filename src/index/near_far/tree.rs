@@ -5,6 +5,7 @@
 use super::walk::{self, SplitNode};
 use super::{MAX_TREE_DEPTH, default_max_depth, scene_bounds, scene_pad};
 use crate::geometry::{Aabb, Hit, Ray};
+use crate::index::huge_pages::huge_page_vec;
 use crate::index::{BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use serde::Serialize;
@@ -104,12 +105,10 @@ impl<N: Partition> Index for NearFarIndex<N> {
             return Err(BuildError::EmptyScene);
         }
         let bounds = scene_bounds(geom, N::NAME)?;
-        let mut built = N::build(geom, params, bounds, scene_pad(&bounds))?;
-        built.nodes.shrink_to_fit();
-        built.ids.shrink_to_fit();
+        let built = N::build(geom, params, bounds, scene_pad(&bounds))?;
         Ok(NearFarIndex {
-            nodes: built.nodes,
-            ids: built.ids,
+            nodes: huge_page_vec(&built.nodes),
+            ids: huge_page_vec(&built.ids),
             refs: built.refs,
             bounds,
             prims: geom.len(),

@@ -7,6 +7,7 @@ use super::tree::{INTERNAL, NO_ROPE, Node, OctreeTree, face, octant_bit};
 use crate::geometry::Aabb;
 use crate::geometry::overlap::OVERLAP_PAD;
 use crate::index::BuildError;
+use crate::index::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use glam::Vec3A;
 use serde::{Deserialize, Serialize};
@@ -240,9 +241,9 @@ impl OctreeTree {
         b.build(0, &all, 0, [NO_ROPE; 6])?;
         let mut tree = b.tree;
         tighten_ropes(&mut tree);
-        tree.nodes.shrink_to_fit();
-        tree.contents.shrink_to_fit();
-        tree.prim_ids.shrink_to_fit();
+        tree.nodes = huge_page_vec(&tree.nodes);
+        tree.contents = huge_page_vec(&tree.contents);
+        tree.prim_ids = huge_page_vec(&tree.prim_ids);
         Ok(tree)
     }
 }

@@ -16,6 +16,7 @@ mod packet;
 mod traverse;
 
 use super::bvh::BvhParams;
+use super::huge_pages::huge_page_vec;
 use super::{BuildError, Bvh, Index, IndexInfo};
 use crate::geometry::Aabb;
 use crate::index::bvh::leaves::{BLOCK_LANES, LeafStore};
@@ -49,7 +50,7 @@ impl<const C: usize> Index for WideBvh<C> {
 
     fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
         const { assert!(C == 1 || C == 2, "the traversal's buffers hold 8 children") };
-        let binary = Bvh::build(geom, params)?;
+        let binary = Bvh::build_tree(geom, params)?;
         let (root_bounds, root, nodes, prim_ids) = binary.parts();
         // Triangle-block leaves test four triangles at the cost of one: merge subtrees of up to
         // four; id leaves test one primitive at a time: keep the binary tree's leaves.
@@ -72,7 +73,7 @@ impl<const C: usize> Index for WideBvh<C> {
         Ok(WideBvh {
             root_bounds,
             root: wide.root,
-            nodes: wide.nodes,
+            nodes: huge_page_vec(&wide.nodes),
             leaf_store,
             prim_refs: prim_ids.len(),
             prims: geom.len(),
