@@ -6,24 +6,28 @@
 //! kernel to back its tree memory with 2 MiB pages (`madvise(MADV_HUGEPAGE)` on its
 //! allocations); [`huge_page_vec`] does the same for ours.
 //!
-//! It copies a slice into a fresh allocation that is advised before the copy first writes it,
-//! so the kernel can fault it in as huge pages, and afterwards asks the kernel to collapse
+//! It copies a large array into a fresh allocation that is advised before the copy first writes
+//! it, so the kernel can fault it in as huge pages, and afterwards asks the kernel to collapse
 //! whatever it still holds in small pages (`MADV_COLLAPSE`, Linux 6.1 and later; an allocation
 //! the allocator recycled was already faulted in). The system decides:
 //! `/sys/kernel/mm/transparent_hugepage/enabled` must be `madvise` or `always`, and a refused
-//! request is ignored. Only the mapping changes, never a byte of the data. Arrays under 2 MiB
-//! and other systems get a plain copy.
+//! request is ignored. Only the mapping changes, never a byte of the data. Arrays under 2 MiB,
+//! and every array on other systems, are only shrunk to their length (no copy).
 
 /// Smallest array worth advising: one huge page.
 pub const HUGE_PAGE: usize = 2 << 20;
 
-/// `items` copied into a new vector whose memory is advised for huge pages (see the module
-/// doc).
-pub fn huge_page_vec<T: Copy>(items: &[T]) -> Vec<T> {
+/// `items` with no spare capacity; when it spans at least [`HUGE_PAGE`] on Linux, copied into
+/// a new vector whose memory is advised for huge pages (see the module doc).
+pub fn huge_page_vec<T: Copy>(mut items: Vec<T>) -> Vec<T> {
+    if !cfg!(target_os = "linux") || size_of_val(&items[..]) < HUGE_PAGE {
+        items.shrink_to_fit();
+        return items;
+    }
     let mut v = Vec::with_capacity(items.len());
-    let range = (v.as_ptr() as usize, size_of_val(items));
+    let range = (v.as_ptr() as usize, size_of_val(&items[..]));
     advise(range, Advice::HugePages);
-    v.extend_from_slice(items);
+    v.extend_from_slice(&items);
     advise(range, Advice::Collapse);
     v
 }
@@ -37,14 +41,11 @@ enum Advice {
     Collapse,
 }
 
-/// Gives `advice` for the whole pages inside `(start, bytes)`, when they span at least one huge
-/// page; errors (an old kernel, huge pages turned off) are ignored.
+/// Gives `advice` for the whole pages inside `(start, bytes)` (`bytes >= HUGE_PAGE`); errors
+/// (an old kernel, huge pages turned off) are ignored.
 #[cfg(target_os = "linux")]
 fn advise((start, bytes): (usize, usize), advice: Advice) {
     const PAGE: usize = 4096;
-    if bytes < HUGE_PAGE {
-        return;
-    }
     let first = start.next_multiple_of(PAGE);
     let end = (start + bytes) & !(PAGE - 1);
     let flag = match advice {
@@ -98,8 +99,9 @@ mod tests {
         let items: Vec<u64> = (0..(16 * HUGE_PAGE / 8) as u64)
             .map(|i| i * 7 + 1)
             .collect();
-        let v = huge_page_vec(&items);
+        let v = huge_page_vec(items.clone());
         assert_eq!(v, items);
+        assert_eq!(v.capacity(), v.len());
         let mode = thp_mode();
         if matches!(mode.as_deref(), Some("madvise" | "always")) {
             let middle = v.as_ptr() as usize + size_of_val(&v[..]) / 2;
@@ -109,7 +111,10 @@ mod tests {
                 "a 32 MiB array advised for huge pages has {kb} kB of them (THP mode {mode:?})"
             );
         }
-        assert_eq!(huge_page_vec::<u32>(&[]), Vec::<u32>::new());
-        assert_eq!(huge_page_vec(&[1u8, 2, 3]), vec![1, 2, 3]);
+        assert_eq!(huge_page_vec::<u32>(Vec::new()), Vec::<u32>::new());
+        let mut small = Vec::with_capacity(100);
+        small.extend([1u8, 2, 3]);
+        let small = huge_page_vec(small);
+        assert_eq!((small.capacity(), small), (3, vec![1, 2, 3]));
     }
 }

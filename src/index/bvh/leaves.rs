@@ -52,7 +52,7 @@ impl LeafStore {
         leaves: impl IntoIterator<Item = &'c mut Child>,
     ) -> LeafStore {
         let Some(tris) = tris else {
-            return LeafStore::Ids(huge_page_vec(&prim_ids));
+            return LeafStore::Ids(huge_page_vec(prim_ids));
         };
         let mut blocks = Vec::with_capacity(prim_ids.len().div_ceil(BLOCK_LANES as usize));
         for leaf in leaves {
@@ -65,7 +65,7 @@ impl LeafStore {
                 blocks.push(TriangleBlock::new(t, ids));
             }
         }
-        LeafStore::Blocks(huge_page_vec(&blocks))
+        LeafStore::Blocks(huge_page_vec(blocks))
     }
 
     pub fn leaves(&self) -> Leaves<'_> {

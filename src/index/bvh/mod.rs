@@ -58,8 +58,8 @@ impl Index for Bvh {
 
     fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
         let mut bvh = Bvh::build_tree(geom, params)?;
-        bvh.nodes = huge_page_vec(&bvh.nodes);
-        bvh.prim_ids = huge_page_vec(&bvh.prim_ids);
+        bvh.nodes = huge_page_vec(bvh.nodes);
+        bvh.prim_ids = huge_page_vec(bvh.prim_ids);
         Ok(bvh)
     }
 

@@ -91,8 +91,8 @@ pub fn fill_cells_with<G: Geometry>(
         *slot += 1;
     }
     Ok(Cells {
-        offsets: huge_page_vec(&offsets).into_boxed_slice(),
-        prims: huge_page_vec(&prims).into_boxed_slice(),
+        offsets: huge_page_vec(offsets).into_boxed_slice(),
+        prims: huge_page_vec(prims).into_boxed_slice(),
     })
 }
 

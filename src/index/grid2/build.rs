@@ -102,8 +102,8 @@ pub fn build_levels<G: Geometry>(
         top_cells,
         inner,
         cells: Cells {
-            offsets: huge_page_vec(&offsets).into_boxed_slice(),
-            prims: huge_page_vec(&prims).into_boxed_slice(),
+            offsets: huge_page_vec(offsets).into_boxed_slice(),
+            prims: huge_page_vec(prims).into_boxed_slice(),
         },
     })
 }

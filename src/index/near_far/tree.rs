@@ -107,8 +107,8 @@ impl<N: Partition> Index for NearFarIndex<N> {
         let bounds = scene_bounds(geom, N::NAME)?;
         let built = N::build(geom, params, bounds, scene_pad(&bounds))?;
         Ok(NearFarIndex {
-            nodes: huge_page_vec(&built.nodes),
-            ids: huge_page_vec(&built.ids),
+            nodes: huge_page_vec(built.nodes),
+            ids: huge_page_vec(built.ids),
             refs: built.refs,
             bounds,
             prims: geom.len(),

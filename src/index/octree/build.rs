@@ -241,9 +241,9 @@ impl OctreeTree {
         b.build(0, &all, 0, [NO_ROPE; 6])?;
         let mut tree = b.tree;
         tighten_ropes(&mut tree);
-        tree.nodes = huge_page_vec(&tree.nodes);
-        tree.contents = huge_page_vec(&tree.contents);
-        tree.prim_ids = huge_page_vec(&tree.prim_ids);
+        tree.nodes = huge_page_vec(tree.nodes);
+        tree.contents = huge_page_vec(tree.contents);
+        tree.prim_ids = huge_page_vec(tree.prim_ids);
         Ok(tree)
     }
 }

@@ -73,7 +73,7 @@ impl<const C: usize> Index for WideBvh<C> {
         Ok(WideBvh {
             root_bounds,
             root: wide.root,
-            nodes: huge_page_vec(&wide.nodes),
+            nodes: huge_page_vec(wide.nodes),
             leaf_store,
             prim_refs: prim_ids.len(),
             prims: geom.len(),
