@@ -104,15 +104,27 @@ fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, V
 /// of the lanes whose interval, with the far distance widened by [`SLAB_FAR_SCALE`] and clipped
 /// to `[t_min, t_max]`, is not empty, and the entries. Without `SAFE` (`t_min >= 0`) the far
 /// distance is widened for `far >= 0` only (see the module doc).
+///
+/// The test `enter <= min(widen(min(far_x, far_y, far_z)), t_max)` is computed as four
+/// comparisons side by side, `enter <= widen(far_k)` for each axis and `enter <= t_max`: the
+/// widening (a product by a positive constant, or the larger of two such products) is monotone
+/// non-decreasing, and rounding keeps it so, so the widened minimum is the minimum of the
+/// widened values, bit for bit; and no lane is NaN here (see the module doc), so `enter` is at
+/// most a minimum exactly when it is at most each term. The decisions and entries are the
+/// scalar test's; the node step's critical path (the next node's address waits for this mask)
+/// loses two `min`s.
 #[inline(always)]
 fn clip<const SAFE: bool, V: Lanes>(near: [V; 3], far: [V; 3], t_min: V, t_max: V) -> (u32, V) {
     let enter = near[0].max(near[1]).max(near[2].max(t_min));
-    let far = far[0].min(far[1]).min(far[2]);
-    let widened = match SAFE {
+    let widen = |far: V| match SAFE {
         true => (far * V::splat(SLAB_FAR_SCALE)).max(far * V::splat(2.0 - SLAB_FAR_SCALE)),
         false => far * V::splat(SLAB_FAR_SCALE),
     };
-    (enter.le(widened.min(t_max)), enter)
+    let mask = enter.le(widen(far[0]))
+        & enter.le(widen(far[1]))
+        & enter.le(widen(far[2]))
+        & enter.le(t_max);
+    (mask, enter)
 }
 
 /// The slab test lane by lane: lane `i` tests the box whose planes are lane `i` of `min[axis]`

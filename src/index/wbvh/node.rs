@@ -61,10 +61,10 @@ impl<const C: usize> WideNode<C> {
         self.valid().count_ones() as usize
     }
 
-    /// Child `i`'s reference.
+    /// Child `i`'s reference (one indexed load: the chunks are consecutive).
     #[inline(always)]
     pub fn child(&self, i: usize) -> Child {
-        self.children[i / 4][i % 4]
+        self.children.as_flattened()[i]
     }
 
     /// Child `i`'s box.
