@@ -111,8 +111,9 @@ fn axis<const SAFE: bool>(planes: Vec4, origin: Vec4, inv_dir: Vec4) -> (Vec4, V
 /// non-decreasing, and rounding keeps it so, so the widened minimum is the minimum of the
 /// widened values, bit for bit; and no lane is NaN here (see the module doc), so `enter` is at
 /// most a minimum exactly when it is at most each term. The decisions and entries are the
-/// scalar test's; the node step's critical path (the next node's address waits for this mask)
-/// loses two `min`s.
+/// scalar test's. On the node step's critical path (the next node's address waits for this
+/// mask) the far side's three dependent `min`s become four independent comparisons whose masks
+/// are ANDed.
 #[inline(always)]
 fn clip<const SAFE: bool, V: Lanes>(near: [V; 3], far: [V; 3], t_min: V, t_max: V) -> (u32, V) {
     let enter = near[0].max(near[1]).max(near[2].max(t_min));
