@@ -55,8 +55,8 @@ impl<const C: usize> Index for WideBvh<C> {
         // Triangle-block leaves test four triangles at the cost of one: merge subtrees of up to
         // four; id leaves test one primitive at a time: keep the binary tree's leaves.
         let tris = LeafStore::block_triangles(geom, prim_ids);
-        let merge_up_to = if tris.is_some() { BLOCK_LANES } else { 0 };
-        let mut wide = collapse::<C>(root, nodes, merge_up_to);
+        let leaf_lanes = if tris.is_some() { BLOCK_LANES } else { 1 };
+        let mut wide = collapse::<C>(root, nodes, leaf_lanes);
         let leaf_refs = wide.nodes.iter_mut().flat_map(|n| {
             let kids = n.width();
             n.children.iter_mut().flatten().take(kids)

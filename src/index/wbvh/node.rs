@@ -6,6 +6,8 @@
 //! references. Lanes past the children hold empty boxes (`+inf..-inf`), which every ray misses
 //! and [`WideNode::valid`] leaves out.
 //!
+//! The binary SAH tree is collapsed into wide nodes by an SAH-optimal plan ([`collapse`]).
+//!
 //! Size: the references first, then the planes, no other field: `C = 1` is 128 bytes (two cache
 //! lines), `C = 2` 256 bytes (four), aligned to a cache line.
 
@@ -115,18 +117,19 @@ pub struct Collapsed<const C: usize> {
     pub leaves: usize,
 }
 
-/// Collapses the binary tree (`root` over `nodes`): each wide node takes its binary node's two
-/// children and repeatedly replaces the inner child of largest surface area by its two
-/// children while it has fewer than `4 * C`; the remaining inner children become wide nodes.
-/// Leaves keep their primitive ranges, and an inner child whose subtree holds at most
-/// `merge_up_to` primitives becomes one leaf over them (with `merge_up_to` = 4, the lanes of a
-/// triangle block, a subtree of up to four triangles costs one block test instead of a node
-/// step and up to four partly empty blocks).
-pub fn collapse<const C: usize>(root: Child, nodes: &[Node], merge_up_to: u32) -> Collapsed<C> {
+/// Collapses the binary tree (`root` over `nodes`) into wide nodes by the SAH-optimal plan of
+/// Ylitie et al. 2017 ([`Plan`]): each wide node takes, among the ways of covering its binary
+/// node's subtree by at most `4 * C` subtrees, the one of least SAH cost, and each chosen
+/// subtree is a leaf or, in turn, a wide node. Leaves keep their primitive ranges, and an inner
+/// child whose subtree holds at most `leaf_lanes` primitives becomes one leaf over them (with
+/// `leaf_lanes` = 4, the lanes of a triangle block, a subtree of up to four triangles costs one
+/// block test instead of a node step and up to four partly empty blocks).
+pub fn collapse<const C: usize>(root: Child, nodes: &[Node], leaf_lanes: u32) -> Collapsed<C> {
     let binary = Binary {
         nodes,
-        merged: merged_leaves(nodes, merge_up_to),
+        merged: merged_leaves(nodes, leaf_lanes),
     };
+    let plan = Plan::new(&binary, 4 * C);
     let root = binary.child(root);
     let mut out = Collapsed {
         root,
@@ -135,7 +138,7 @@ pub fn collapse<const C: usize>(root: Child, nodes: &[Node], merge_up_to: u32) -
         leaves: usize::from(root.is_leaf()),
     };
     if !root.is_leaf() {
-        out.root = Child::inner(emit(root.index, &binary, &mut out, 1));
+        out.root = Child::inner(emit(root.index, &binary, &plan, &mut out, 1));
     }
     out
 }
@@ -186,32 +189,115 @@ fn merged_leaves(nodes: &[Node], merge_up_to: u32) -> Vec<Option<Child>> {
     runs.into_iter().map(leaf).collect()
 }
 
-/// The children of the wide node for binary node `index`: its two children, with the inner
-/// child of largest surface area replaced by its two children while there are fewer than
-/// `4 * C`.
-fn open<const C: usize>(index: u32, binary: &Binary) -> Vec<(Aabb, Child)> {
-    let mut kids: Vec<(Aabb, Child)> = binary.kids(index).to_vec();
-    while kids.len() < 4 * C {
-        let Some((pos, _)) = kids
-            .iter()
-            .enumerate()
-            .filter(|(_, (_, c))| !c.is_leaf())
-            .max_by(|a, b| a.1.0.surface_area().total_cmp(&b.1.0.surface_area()))
-        else {
-            break;
+/// The collapse's plan (Ylitie, Karras and Laine 2017, "Efficient incoherent ray traversal on
+/// GPUs through compressed wide BVHs", section 4.1), by dynamic programming over the binary
+/// tree, children before parents. Every way of grouping the binary tree into wide nodes keeps
+/// the same leaves (the binary tree's and the merged subtrees, each once), so the SAH cost
+/// differs only in the wide nodes: the plan minimizes their summed surface area (the expected
+/// number of node steps of a random ray, up to a constant factor).
+///
+/// For binary node `n` and `j` in `1..=width` slots, `cost[n][j - 1]` is the least summed area
+/// of the wide nodes needed to cover `n`'s subtree by at most `j` children of one wide node, and
+/// `split[n][j - 1]` how: `0` for `n` itself as one child (a wide node over the best cover of
+/// its subtree by `width` children, costing its own area more), `k > 0` for `k` slots to the
+/// cover of `n`'s first child and `j - k` to its second's. A leaf is always one child, at no
+/// cost. Merged nodes have no entry of their own (their parents see leaves).
+struct Plan {
+    cost: Vec<[f32; 8]>,
+    split: Vec<[u8; 8]>,
+}
+
+impl Plan {
+    fn new(binary: &Binary, width: usize) -> Plan {
+        let n = binary.nodes.len();
+        let mut plan = Plan {
+            cost: vec![[0.0; 8]; n],
+            split: vec![[0; 8]; n],
         };
-        let (_, opened) = kids.swap_remove(pos);
-        kids.extend(binary.kids(opened.index));
+        for i in (0..n).rev() {
+            if binary.merged[i].is_some() {
+                continue;
+            }
+            let [(box_a, a), (box_b, b)] = binary.kids(i as u32);
+            let cover = |c: Child, j: usize| match c.is_leaf() {
+                true => 0.0,
+                false => plan.cost[c.index as usize][j - 1],
+            };
+            // Best cover of the two children by `j` slots and the first child's share (the
+            // first share of least cost; 1 when no cost is finite: boxes of infinite or NaN
+            // area).
+            let spread = |j: usize| {
+                (1..j).fold((f32::INFINITY, 1u8), |best, k| {
+                    let c = cover(a, k) + cover(b, j - k);
+                    if c < best.0 { (c, k as u8) } else { best }
+                })
+            };
+            let children = spread(width);
+            let whole = box_a.union(box_b).surface_area() + children.0;
+            let (mut cost, mut split) = ([whole; 8], [0u8; 8]);
+            for j in 2..width {
+                let s = spread(j);
+                if s.0 <= whole {
+                    (cost[j - 1], split[j - 1]) = s;
+                }
+            }
+            // The cover by `width` slots always splits: it is the wide node's own children.
+            (cost[width - 1], split[width - 1]) = children;
+            (plan.cost[i], plan.split[i]) = (cost, split);
+        }
+        plan
     }
+
+    /// Appends to `out` the children covering `child` (with box `bounds`) in at most `j` slots.
+    fn gather(
+        &self,
+        binary: &Binary,
+        (bounds, child): (Aabb, Child),
+        j: usize,
+        out: &mut Vec<(Aabb, Child)>,
+    ) {
+        let k = match child.is_leaf() {
+            true => 0,
+            false => self.split[child.index as usize][j - 1] as usize,
+        };
+        if k == 0 {
+            out.push((bounds, child));
+        } else {
+            let [a, b] = binary.kids(child.index);
+            self.gather(binary, a, k, out);
+            self.gather(binary, b, j - k, out);
+        }
+    }
+}
+
+/// The children of the wide node for binary node `index`: the plan's cover of its subtree by
+/// `4 * C` children (at least its two children, since the cover by `4 * C` slots always splits).
+fn open<const C: usize>(index: u32, binary: &Binary, plan: &Plan) -> Vec<(Aabb, Child)> {
+    let width = 4 * C;
+    let k = plan.split[index as usize][width - 1] as usize;
+    debug_assert!(
+        k > 0,
+        "the cover of node {index} by {width} slots does not split"
+    );
+    let [a, b] = binary.kids(index);
+    let mut kids = Vec::with_capacity(width);
+    plan.gather(binary, a, k, &mut kids);
+    plan.gather(binary, b, width - k, &mut kids);
     kids
 }
 
 /// Appends the wide node for binary node `index` and its subtree; returns its index.
-fn emit<const C: usize>(index: u32, binary: &Binary, out: &mut Collapsed<C>, level: u32) -> u32 {
+fn emit<const C: usize>(
+    index: u32,
+    binary: &Binary,
+    plan: &Plan,
+    out: &mut Collapsed<C>,
+    level: u32,
+) -> u32 {
     let me = out.nodes.len();
-    let kids = open::<C>(index, binary);
+    let kids = open::<C>(index, binary, plan);
     out.nodes.push(WideNode::new(&kids));
-    emit_children(me, &kids, binary, out, level);
+    emit_children(me, &kids, binary, plan, out, level);
     me as u32
 }
 
@@ -222,6 +308,7 @@ fn emit_children<const C: usize>(
     me: usize,
     kids: &[(Aabb, Child)],
     binary: &Binary,
+    plan: &Plan,
     out: &mut Collapsed<C>,
     level: u32,
 ) {
@@ -233,7 +320,7 @@ fn emit_children<const C: usize>(
             *child
         } else {
             let slot = out.nodes.len();
-            let grandkids = open::<C>(child.index, binary);
+            let grandkids = open::<C>(child.index, binary, plan);
             out.nodes.push(WideNode::new(&grandkids));
             inner.push((slot, grandkids));
             Child::inner(slot as u32)
@@ -241,6 +328,6 @@ fn emit_children<const C: usize>(
         out.nodes[me].children[i / 4][i % 4] = c;
     }
     for (slot, grandkids) in inner {
-        emit_children(slot, &grandkids, binary, out, level + 1);
+        emit_children(slot, &grandkids, binary, plan, out, level + 1);
     }
 }
