@@ -139,10 +139,14 @@ pub struct AxisBins<'a> {
     pub max: &'a [Vec3A],
     pub enter: &'a [u32],
     pub exit: &'a [u32],
+    /// The SAH counts each side's references rounded up to a multiple of this
+    /// ([`super::params::BuildConfig::sah_block`]).
+    pub block: u32,
 }
 
 /// A scored plane: between bins `plane - 1` and `plane` of `axis`, with
-/// `cost = area(left) * counts[0] + area(right) * counts[1]` (both counts > 0).
+/// `cost = area(left) * counts[0] + area(right) * counts[1]` (both counts > 0, each rounded up
+/// to a multiple of [`AxisBins::block`] in the cost).
 #[derive(Debug, Clone, Copy)]
 pub struct Plane {
     pub cost: f32,
@@ -180,7 +184,7 @@ impl Sweep {
             acc = Aabb::new(acc.min.min(lo[k]), acc.max.max(hi[k]));
             c += bins.exit[k];
             let term = if c > 0 {
-                area(acc.min, acc.max) * c as f32
+                area(acc.min, acc.max) * c.next_multiple_of(bins.block) as f32
             } else {
                 0.0
             };
@@ -194,7 +198,7 @@ impl Sweep {
             if c == 0 || rc == 0 || c.saturating_add(rc) > max_refs {
                 continue;
             }
-            let cost = area(acc.min, acc.max) * c as f32 + term;
+            let cost = area(acc.min, acc.max) * c.next_multiple_of(bins.block) as f32 + term;
             if best.is_none_or(|b| cost < b.cost) {
                 *best = Some(Plane {
                     cost,
@@ -228,6 +232,7 @@ pub fn split(
     refs: &mut [PrimRef],
     centroids: &Aabb,
     bins: u32,
+    block: u32,
     scratch: &mut Scratch,
 ) -> Option<Split> {
     debug_assert!(BINS.contains(&bins));
@@ -270,6 +275,7 @@ pub fn split(
             max: &set.max[a][..bins],
             enter: &set.count[a][..bins],
             exit: &set.count[a][..bins],
+            block,
         };
         scratch.sweep.axis(a, &bins, u32::MAX, &mut best);
     }
@@ -337,7 +343,7 @@ mod tests {
             .map(|i| point_ref(i, if i % 2 == 0 { 0.0 } else { 10.0 } + i as f32 * 0.01))
             .collect();
         let (_, c) = bounds_and_centroids(&refs);
-        let sp = split(&mut refs, &c, 8, &mut Scratch::default()).unwrap();
+        let sp = split(&mut refs, &c, 8, 1, &mut Scratch::default()).unwrap();
         assert_eq!(sp.mid, 5);
         assert_eq!(sp.left, bounds_and_centroids(&refs[..5]));
         assert_eq!(sp.right, bounds_and_centroids(&refs[5..]));
@@ -348,6 +354,6 @@ mod tests {
     fn coincident_centroids_have_no_plane() {
         let mut refs: Vec<PrimRef> = (0..4).map(|i| point_ref(i, 1.0)).collect();
         let (_, c) = bounds_and_centroids(&refs);
-        assert!(split(&mut refs, &c, 16, &mut Scratch::default()).is_none());
+        assert!(split(&mut refs, &c, 16, 1, &mut Scratch::default()).is_none());
     }
 }

@@ -114,7 +114,7 @@ pub fn build(mut refs: Vec<PrimRef>, cfg: &BuildConfig, clip: Option<&dyn Clip>)
     let ctx = Ctx {
         cfg,
         parallel: rayon::current_num_threads() > 1,
-        spatial: clip.map(|c| Spatial::new(c, &boxes.0)),
+        spatial: clip.map(|c| Spatial::new(c, &boxes.0, cfg.sah_block)),
     };
     let budget = match ctx.spatial {
         Some(_) => spatial::budget(refs.len(), cfg.split_budget),
@@ -163,9 +163,13 @@ fn subtree(
     let bins = cfg.bins.min(n as u32).max(2);
     // (cost, mid, child boxes if the splitter computed them)
     let split = match cfg.split {
-        SplitMethod::Binned => binned::split(refs, &centroids, bins, &mut scratch.binned)
-            .map(|s| (s.cost, s.mid, Some([s.left, s.right]))),
-        SplitMethod::Sweep => sweep::split(refs).map(|(cost, mid)| (cost, mid, None)),
+        SplitMethod::Binned => {
+            binned::split(refs, &centroids, bins, cfg.sah_block, &mut scratch.binned)
+                .map(|s| (s.cost, s.mid, Some([s.left, s.right])))
+        }
+        SplitMethod::Sweep => {
+            sweep::split(refs, cfg.sah_block as usize).map(|(cost, mid)| (cost, mid, None))
+        }
     };
     let small = n <= cfg.leaf_size as usize;
     let (cost, mid, children) = match split {
@@ -188,14 +192,16 @@ fn subtree(
                 s.find(refs, &bounds, bins, budget, &mut scratch.spatial)?,
             ))
         });
-    // SAH in units of one primitive test: leaf n, split cost_ratio + expected tests.
+    // SAH in units of one primitive test: leaf n (rounded up to whole blocks), split
+    // cost_ratio + expected tests.
     let area = bounds.surface_area();
     let expected = |cost: f32| if area > 0.0 { cost / area } else { 0.0 };
     let best = match (cost, spatial.map(|(_, c)| c.cost)) {
         (Some(o), Some(s)) => Some(o.min(s)),
         (o, s) => o.or(s),
     };
-    if small && best.is_some_and(|c| n as f32 <= cfg.cost_ratio + expected(c)) {
+    let leaf = n.next_multiple_of(cfg.sah_block as usize) as f32;
+    if small && best.is_some_and(|c| leaf <= cfg.cost_ratio + expected(c)) {
         return out.leaf(refs, level);
     }
     if let Some((s, c)) = spatial

@@ -27,6 +27,7 @@ mod traverse;
 pub(crate) mod walk;
 
 pub use build::MAX_DEPTH;
+use params::BuildConfig;
 pub use params::{BvhParams, Preset, SplitMethod};
 
 use super::huge_pages::huge_page_vec;
@@ -57,7 +58,7 @@ impl Index for Bvh {
     type Params = BvhParams;
 
     fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
-        let mut bvh = Bvh::build_tree(geom, params)?;
+        let mut bvh = Bvh::build_tree(geom, params, 1)?;
         bvh.nodes = huge_page_vec(bvh.nodes);
         bvh.prim_ids = huge_page_vec(bvh.prim_ids);
         Ok(bvh)
@@ -89,9 +90,17 @@ impl Index for Bvh {
 impl Bvh {
     /// The tree in ordinary memory: what [`Index::build`] builds before it moves the arrays to
     /// huge pages ([`huge_page_vec`]), and what the wide BVH collapses (it keeps only its own
-    /// arrays).
-    pub(crate) fn build_tree<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Bvh, BuildError> {
-        let cfg = params.config()?;
+    /// arrays). The SAH counts primitives in blocks of `sah_block` (see
+    /// [`params::BuildConfig::sah_block`]; 1 for `bvh`).
+    pub(crate) fn build_tree<G: Geometry>(
+        geom: &G,
+        params: &BvhParams,
+        sah_block: u32,
+    ) -> Result<Bvh, BuildError> {
+        let cfg = BuildConfig {
+            sah_block,
+            ..params.config()?
+        };
         if geom.is_empty() {
             return Err(BuildError::EmptyScene);
         }

@@ -70,6 +70,7 @@ impl Preset {
             cost_ratio: 1.0,
             spatial_splits: false,
             split_budget: 4.0,
+            sah_block: 1,
         };
         match self {
             Preset::Fastest => binned(8, 8),
@@ -124,6 +125,12 @@ pub struct BuildConfig {
     pub cost_ratio: f32,
     pub spatial_splits: bool,
     pub split_budget: f32,
+    /// Primitives one leaf test covers: the SAH counts each side's (and each leaf's)
+    /// primitives rounded up to a multiple of it, as Embree's builders count blocks of four
+    /// triangles, so splits favour leaves that fill whole blocks. 1 (plain counts) except for
+    /// the wide BVH's triangle-block leaves ([`crate::index::bvh::leaves::BLOCK_LANES`]); not
+    /// a user parameter.
+    pub sah_block: u32,
 }
 
 impl BvhParams {

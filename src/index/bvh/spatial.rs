@@ -202,18 +202,22 @@ pub struct Spatial<'a> {
     clip: &'a dyn Clip,
     pad: Vec3A,
     min_overlap: f32,
+    /// The SAH's count rounding ([`super::params::BuildConfig::sah_block`]).
+    block: u32,
 }
 
 /// The references of one child of a spatial split with their bounds and centroid bounds.
 pub type Side = (Vec<PrimRef>, (Aabb, Aabb));
 
 impl<'a> Spatial<'a> {
-    /// Spatial splits over primitives clipped by `clip`, whose bounds' union is `root`.
-    pub fn new(clip: &'a dyn Clip, root: &Aabb) -> Spatial<'a> {
+    /// Spatial splits over primitives clipped by `clip`, whose bounds' union is `root`, scored
+    /// with the SAH's counts rounded up to multiples of `block`.
+    pub fn new(clip: &'a dyn Clip, root: &Aabb, block: u32) -> Spatial<'a> {
         Spatial {
             clip,
             pad: Vec3A::splat(scene_pad(root)),
             min_overlap: ALPHA * root.surface_area(),
+            block,
         }
     }
 
@@ -299,6 +303,7 @@ impl<'a> Spatial<'a> {
                 max,
                 enter,
                 exit,
+                block: self.block,
             };
             s.sweep.axis(a, &view, max_refs, &mut best);
             // The sweep's admissible planes: both sides non-empty, within the budget.

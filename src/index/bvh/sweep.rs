@@ -17,8 +17,9 @@ fn sort_on(refs: &mut [PrimRef], axis: usize) {
 /// Finds the cheapest split over all three axes and orders `refs` so that it is at `mid`.
 ///
 /// Returns `(cost, mid)` with both sides non-empty and
-/// `cost = area(left) * n_left + area(right) * n_right`; `None` for fewer than 2 primitives.
-pub fn split(refs: &mut [PrimRef]) -> Option<(f32, usize)> {
+/// `cost = area(left) * n_left + area(right) * n_right`, each count rounded up to a multiple of
+/// `block` ([`super::params::BuildConfig::sah_block`]); `None` for fewer than 2 primitives.
+pub fn split(refs: &mut [PrimRef], block: usize) -> Option<(f32, usize)> {
     let n = refs.len();
     if n < 2 {
         return None;
@@ -31,12 +32,12 @@ pub fn split(refs: &mut [PrimRef]) -> Option<(f32, usize)> {
         let mut acc = Aabb::EMPTY;
         for i in (1..n).rev() {
             acc = acc.union(refs[i].bounds());
-            right_cost[i] = acc.surface_area() * (n - i) as f32;
+            right_cost[i] = acc.surface_area() * (n - i).next_multiple_of(block) as f32;
         }
         let mut acc = Aabb::EMPTY;
         for i in 1..n {
             acc = acc.union(refs[i - 1].bounds());
-            let cost = acc.surface_area() * i as f32 + right_cost[i];
+            let cost = acc.surface_area() * i.next_multiple_of(block) as f32 + right_cost[i];
             if best.is_none_or(|(c, ..)| cost < c) {
                 best = Some((cost, axis, i));
             }
@@ -64,7 +65,7 @@ mod tests {
                 PrimRef::new(Aabb::new(c - 0.5, c + 0.5), 8 - i)
             })
             .collect();
-        let (_, mid) = split(&mut refs).unwrap();
+        let (_, mid) = split(&mut refs, 1).unwrap();
         let low = |r: &PrimRef| r.centroid().y < 50.0;
         let (l, r) = refs.split_at(mid);
         assert!(l.iter().all(low) && !r.iter().any(low) || !l.iter().any(low) && r.iter().all(low));

@@ -50,12 +50,14 @@ impl<const C: usize> Index for WideBvh<C> {
 
     fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
         const { assert!(C == 1 || C == 2, "the traversal's buffers hold 8 children") };
-        let binary = Bvh::build_tree(geom, params)?;
+        // Triangle-block leaves test four triangles at the cost of one: the SAH counts
+        // triangles in blocks of four and the collapse merges subtrees of up to four; id leaves
+        // test one primitive at a time: plain counts, the binary tree's leaves.
+        let blocks = (0..geom.len() as u32).all(|p| geom.block_triangle(p).is_some());
+        let leaf_lanes = if blocks { BLOCK_LANES } else { 1 };
+        let binary = Bvh::build_tree(geom, params, leaf_lanes)?;
         let (root_bounds, root, nodes, prim_ids) = binary.parts();
-        // Triangle-block leaves test four triangles at the cost of one: merge subtrees of up to
-        // four; id leaves test one primitive at a time: keep the binary tree's leaves.
         let tris = LeafStore::block_triangles(geom, prim_ids);
-        let leaf_lanes = if tris.is_some() { BLOCK_LANES } else { 1 };
         let mut wide = collapse::<C>(root, nodes, leaf_lanes);
         let leaf_refs = wide.nodes.iter_mut().flat_map(|n| {
             let kids = n.width();
