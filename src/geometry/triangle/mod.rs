@@ -109,6 +109,13 @@ pub trait RealKernel: Copy + Default + Send + Sync + 'static {
     /// `Some(t)` when the ray hits the triangle with corners `v` at `t` in `[ray.t_min, t_max]`.
     fn on_corners<R: KernelRay>(v: [R::Vec; 3], ray: &R, t_max: R::Scalar) -> Option<R::Scalar>;
 
+    /// The lane form of the `f32` instance ([`TriangleKernel::intersect_lanes`], contract in
+    /// [`lanes`]); by default no lane is decided.
+    #[inline(always)]
+    fn on_lanes(_tris: &lanes::TriangleLanes, _ray: &Ray) -> lanes::LaneHits {
+        lanes::LaneHits::UNDECIDED
+    }
+
     /// [`RealKernel::on_corners`] on the corners of `tri`, taken exactly in the ray's precision.
     #[inline(always)]
     fn intersect_in<R: KernelRay>(tri: &Triangle, ray: &R, t_max: R::Scalar) -> Option<R::Scalar> {
@@ -121,6 +128,10 @@ impl<K: RealKernel> TriangleKernel for K {
     #[inline]
     fn intersect(tri: &Triangle, ray: &Ray, t_max: f32) -> Option<f32> {
         K::intersect_in(tri, ray, t_max)
+    }
+    #[inline(always)]
+    fn intersect_lanes(tris: &lanes::TriangleLanes, ray: &Ray) -> lanes::LaneHits {
+        K::on_lanes(tris, ray)
     }
 }
 
