@@ -71,6 +71,50 @@ pub fn scalar_lanes<K: TriangleKernel>(
     std::array::from_fn(|i| K::intersect(&lanes.triangle(i), ray, ray.t_max))
 }
 
+/// What the lane-form tests saw: decided hits and misses, and lanes left to the scalar kernel.
+#[cfg(test)]
+#[derive(Debug, Default)]
+pub struct LaneTally {
+    pub hits: usize,
+    pub misses: usize,
+    pub undecided: usize,
+}
+
+#[cfg(test)]
+impl LaneTally {
+    /// Asserts that every lane `got` decided equals the scalar kernel `K` bit for bit (hit or
+    /// miss, and `t`), and counts the outcomes.
+    pub fn check<K: TriangleKernel>(
+        &mut self,
+        got: &LaneHits,
+        lanes: &TriangleLanes,
+        ray: &crate::geometry::Ray,
+    ) {
+        for (i, w) in scalar_lanes::<K>(lanes, ray).iter().enumerate() {
+            if got.scalar >> i & 1 == 1 {
+                self.undecided += 1;
+                continue;
+            }
+            let g = (got.hit >> i & 1 == 1).then_some(got.t[i]);
+            assert_eq!(g.map(f32::to_bits), w.map(f32::to_bits), "lane {i} {ray:?}");
+            if g.is_some() {
+                self.hits += 1
+            } else {
+                self.misses += 1
+            }
+        }
+    }
+
+    /// Asserts that the test reached every outcome: over 10,000 hits and misses, over 100
+    /// undecided lanes.
+    pub fn assert_all_outcomes(&self) {
+        assert!(
+            self.hits > 10_000 && self.misses > 10_000 && self.undecided > 100,
+            "{self:?}"
+        );
+    }
+}
+
 /// Up to four scene triangles copied into a leaf ([`TriangleLanes`]) with their primitive
 /// ids; unused lanes repeat lane 0's triangle and id. 160 bytes, aligned to 32 so that a block
 /// in an array spans three cache lines, never four.

@@ -116,7 +116,7 @@ mod tests {
     use crate::geometry::Triangle;
     use crate::geometry::test_support::unit_floats;
     use crate::geometry::triangle::Exact;
-    use crate::geometry::triangle::lanes::scalar_lanes;
+    use crate::geometry::triangle::lanes::LaneTally;
     use glam::{Vec3, Vec3A};
 
     /// Points uniform in the cube `[-scale / 2, scale / 2]^3`, from a fixed seed.
@@ -131,7 +131,7 @@ mod tests {
     #[test]
     fn decided_lanes_equal_the_scalar_kernel() {
         let mut point = points(0x1234_5678_9abc_def1);
-        let (mut hits, mut misses, mut undecided) = (0, 0, 0);
+        let mut tally = LaneTally::default();
         for round in 0..40_000 {
             let scale = [1.0, 1e3, 1e-3][round % 3];
             let tris: [Triangle; 4] =
@@ -146,22 +146,9 @@ mod tests {
             let Ok(ray) = Ray::new(o.into(), Vec3::from(target - o), 0.0, f32::INFINITY) else {
                 continue;
             };
-            let got = intersect_lanes(&lanes, &ray);
-            let want = scalar_lanes::<Exact>(&lanes, &ray);
-            for (i, w) in want.iter().enumerate() {
-                if got.scalar >> i & 1 == 1 {
-                    undecided += 1;
-                    continue;
-                }
-                let g = (got.hit >> i & 1 == 1).then_some(got.t[i]);
-                assert_eq!(g.map(f32::to_bits), w.map(f32::to_bits), "lane {i} {ray:?}");
-                if g.is_some() { hits += 1 } else { misses += 1 }
-            }
+            tally.check::<Exact>(&intersect_lanes(&lanes, &ray), &lanes, &ray);
         }
-        assert!(
-            hits > 10_000 && misses > 10_000 && undecided > 100,
-            "{hits} {misses} {undecided}"
-        );
+        tally.assert_all_outcomes();
     }
 
     /// The AVX pass answers exactly what the portable form answers (hits, undecided lanes and
