@@ -231,3 +231,98 @@ fn exact_kernel_fallback_share_is_reported_per_index() {
         }
     }
 }
+
+/// An index that records the name of every uncounted batch it traces (the suite's timed
+/// passes) in a shared log, and otherwise is the index it wraps.
+struct Logged {
+    inner: Box<dyn TraceIndex>,
+    log: std::sync::Arc<std::sync::Mutex<Vec<String>>>,
+}
+
+impl Logged {
+    fn note(&self, counted: bool) {
+        if !counted {
+            self.log.lock().unwrap().push(self.inner.name().to_owned());
+        }
+    }
+}
+
+impl TraceIndex for Logged {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+    fn params(&self) -> &str {
+        self.inner.params()
+    }
+    fn info(&self) -> &accelbench::index::IndexInfo {
+        self.inner.info()
+    }
+    fn closest_hit(&self, ray: &Ray) -> Option<accelbench::geometry::Hit> {
+        self.inner.closest_hit(ray)
+    }
+    fn closest_hit_counted(
+        &self,
+        ray: &Ray,
+        c: &mut accelbench::index::Counters,
+    ) -> Option<accelbench::geometry::Hit> {
+        self.inner.closest_hit_counted(ray, c)
+    }
+    fn any_hit(&self, ray: &Ray) -> bool {
+        self.inner.any_hit(ray)
+    }
+    fn any_hit_counted(&self, ray: &Ray, c: &mut accelbench::index::Counters) -> bool {
+        self.inner.any_hit_counted(ray, c)
+    }
+    fn closest_hits_in(
+        &self,
+        mode: accelbench::index::TraceMode,
+        rays: &[Ray],
+        out: &mut [Option<accelbench::geometry::Hit>],
+        counters: Option<&mut [accelbench::index::Counters]>,
+    ) {
+        self.note(counters.is_some());
+        self.inner.closest_hits_in(mode, rays, out, counters)
+    }
+    fn any_hits_in(
+        &self,
+        mode: accelbench::index::TraceMode,
+        rays: &[Ray],
+        out: &mut [bool],
+        counters: Option<&mut [accelbench::index::Counters]>,
+    ) {
+        self.note(counters.is_some());
+        self.inner.any_hits_in(mode, rays, out, counters)
+    }
+}
+
+/// The timed passes of a set's indices take turns (the first pass of each, then the second of
+/// each, ...) at each thread count, so a slow phase of the machine does not fall on one index
+/// alone; every index still gets its repeats, and the rows carry them.
+#[test]
+fn timed_passes_of_a_set_are_interleaved_across_indices() {
+    let scene = generators::generate("icosphere", 200, 1).unwrap();
+    let mut cfg = config(&["bvh", "bvh8", "grid"]);
+    cfg.sets = vec![RaySet::Primary];
+    cfg.threads = vec![1, 2];
+    cfg.repeats = 3;
+    let log = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let build = |spec: &IndexSpec, g: &accelbench::scene::SceneGeometry| {
+        let inner = build_index(spec, g, TriangleKernelKind::Watertight)?;
+        let log = log.clone();
+        Ok(Box::new(Logged { inner, log }) as Box<dyn TraceIndex>)
+    };
+    let res = run_suite_with(
+        &[scene],
+        &cfg,
+        &ProgressBar::hidden(),
+        &build,
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let one_round = ["bvh", "bvh8", "grid"];
+    let expected: Vec<&str> = one_round.repeat(3 * 2);
+    assert_eq!(*log.lock().unwrap(), expected);
+    assert_eq!(res.rows.len(), 3 * 2);
+    assert!(res.rows.iter().all(|r| r.repeats == 3 && r.mismatches == 0));
+    assert!(res.rows.iter().all(|r| r.mrays_per_s.is_finite()));
+}

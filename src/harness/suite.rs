@@ -3,7 +3,8 @@
 //!
 //! Per scene: each index is built once (on all threads) and reused by every ray set. Per ray set
 //! and index: one counting pass (statistics, untimed), then per thread count a timed pass of
-//! `repeats` runs (median and spread). Verification compares, bit for bit:
+//! `repeats` runs (median and spread), the runs of the set's indices taking turns (see
+//! [`super::suite_set`]). Verification compares, bit for bit:
 //! - every index with brute force, on every ray when `rays x primitives` fits the verification
 //!   budget, else on a deterministic sample (every k-th ray) that fits it;
 //! - every index with the first of our indices in the list (peers, [`is_peer`], excluded), on every

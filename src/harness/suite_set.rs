@@ -1,10 +1,13 @@
 //! One ray set of one scene through every built index: brute force's reference, then per index
-//! a counting pass, the verification of its hits, the timed passes and the result rows.
+//! (and trace mode) a counting pass and the verification of its hits, then the timed passes of
+//! all of them, interleaved ([`timed_passes`]), and the result rows.
 
 use super::peer_check::{PeerCounts, classify};
 use super::suite_config::{Pools, SuiteConfig};
 use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
-use super::timing::{BatchHits, Query, Timing, counting_pass, counting_pass_in, timed_pass_in};
+use super::timing::{
+    BatchHits, PassOutput, Query, Timing, counting_pass, counting_pass_in, time_pass,
+};
 use super::verify::{Mismatch, compare_closest};
 use super::workload::RaySet;
 use crate::geometry::triangle::exact::fallback_total;
@@ -165,46 +168,18 @@ fn brute_over_budget(
     true
 }
 
-/// The timed passes at every thread count (each checked against the counting pass), or one
-/// untimed entry at the largest count when the run does not time.
-fn timed_passes(
-    run: &SetRun,
-    (index, mode): (&dyn TraceIndex, TraceMode),
-    counted: &BatchHits,
-    cfg: &SuiteConfig,
-    pools: &Pools,
-    t: &mut Tally,
-    res: &mut SuiteResult,
-) -> Vec<(usize, Option<Timing>)> {
-    if !cfg.timed {
-        return vec![(cfg.threads.last().copied().unwrap_or(1), None)];
-    }
-    pools
-        .0
-        .iter()
-        .map(|(threads, pool)| {
-            let (timing, timed_hits) =
-                pool.install(|| timed_pass_in(index, run.set.query(), mode, run.rays, cfg.repeats));
-            t.record(
-                "counting-pass",
-                compare_closest(run.rays, counted, &timed_hits),
-                res,
-            );
-            (*threads, Some(timing))
-        })
-        .collect()
-}
-
-/// Runs every built index on one ray set and appends its rows to `res`: traced ray by ray,
-/// then in every extra mode of `cfg.modes` that applies to the set.
-pub(super) fn run_set(
-    mut run: SetRun,
-    built: &[Box<dyn TraceIndex>],
+/// Runs every built index on one ray set and appends its rows to `res`. First each index is
+/// counted and verified, traced ray by ray and then in every extra mode of `cfg.modes` that
+/// applies to the set; then all of them are timed together ([`timed_passes`]).
+pub(super) fn run_set<'a>(
+    mut run: SetRun<'a>,
+    built: &'a [Box<dyn TraceIndex>],
     cfg: &SuiteConfig,
     pools: &Pools,
     progress: &ProgressBar,
     res: &mut SuiteResult,
 ) {
+    let mut entries = Vec::new();
     for index in built {
         let index = index.as_ref();
         progress.set_message(format!(
@@ -217,12 +192,34 @@ pub(super) fn run_set(
             progress.inc(1);
             continue;
         }
-        let hits = run_mode(&mut run, index, TraceMode::Single, None, cfg, pools, res);
-        let set = run.set;
+        let single = count_mode(&mut run, index, TraceMode::Single, None, pools, res);
+        let (set, first) = (run.set, entries.len());
         for &mode in cfg.modes.iter().filter(|m| applies(**m, set)) {
-            run_mode(&mut run, index, mode, Some(&hits), cfg, pools, res);
+            let entry = count_mode(&mut run, index, mode, Some(&single.hits), pools, res);
+            entries.push(entry);
         }
+        entries.insert(first, single);
         progress.inc(1);
+    }
+    progress.set_message(format!("{}: {} timing", run.scene.name, run.set.name()));
+    let timings = timed_passes(&run, &mut entries, cfg, pools, res);
+    for (entry, timings) in entries.into_iter().zip(timings) {
+        let counts = SetCounts {
+            total: entry.total,
+            hits: entry.hits.iter().flatten().count(),
+            mismatches: entry.tally.count,
+            exact_fallbacks: entry.exact_fallbacks,
+            peer: entry.tally.peer,
+        };
+        let label = match entry.mode {
+            TraceMode::Single => entry.index.name().to_owned(),
+            m => format!("{}+{}", entry.index.name(), m.label()),
+        };
+        for (threads, timing) in timings {
+            let mut row = result_row(&run, entry.index, &counts, threads, timing, cfg);
+            row.index.clone_from(&label);
+            res.rows.push(row);
+        }
     }
 }
 
@@ -234,18 +231,28 @@ fn applies(mode: TraceMode, set: RaySet) -> bool {
     }
 }
 
-/// One index on one set in one mode: the counting pass, its verification (ray by ray: against
-/// brute force and the first index; other modes: against the ray-by-ray hits `single`), the
-/// timed passes and the rows (labelled `index+mode` for the other modes). Returns the hits.
-fn run_mode(
-    run: &mut SetRun,
-    index: &dyn TraceIndex,
+/// One index in one trace mode on the set, counted and verified, waiting to be timed.
+struct Entry<'a> {
+    index: &'a dyn TraceIndex,
+    mode: TraceMode,
+    /// The counting pass's answers.
+    hits: BatchHits,
+    total: Counters,
+    /// Edge functions the exact kernel's fallback decided during the counting pass.
+    exact_fallbacks: u64,
+    tally: Tally<'a>,
+}
+
+/// The counting pass of one index in one mode and its verification (ray by ray: against brute
+/// force and the first index; other modes: against the ray-by-ray answers `single`).
+fn count_mode<'a>(
+    run: &mut SetRun<'a>,
+    index: &'a dyn TraceIndex,
     mode: TraceMode,
     single: Option<&BatchHits>,
-    cfg: &SuiteConfig,
     pools: &Pools,
     res: &mut SuiteResult,
-) -> BatchHits {
+) -> Entry<'a> {
     let query = run.set.query();
     let fallbacks_before = fallback_total();
     let (counters, hits) = pools
@@ -264,24 +271,55 @@ fn run_mode(
         None => run.verify(index, &hits, &mut tally, res),
         Some(single) => tally.record("single", compare_closest(run.rays, single, &hits), res),
     }
-    let timings = timed_passes(run, (index, mode), &hits, cfg, pools, &mut tally, res);
-    let counts = SetCounts {
+    Entry {
+        index,
+        mode,
+        hits,
         total: counters.iter().copied().sum(),
-        hits: hits.iter().flatten().count(),
-        mismatches: tally.count,
         exact_fallbacks,
-        peer: tally.peer,
-    };
-    let label = match mode {
-        TraceMode::Single => index.name().to_owned(),
-        m => format!("{}+{}", index.name(), m.label()),
-    };
-    for (threads, timing) in timings {
-        let mut row = result_row(run, index, &counts, threads, timing, cfg);
-        row.index.clone_from(&label);
-        res.rows.push(row);
+        tally,
     }
-    hits
+}
+
+/// The timed passes of every entry at every thread count, or one untimed entry at the largest
+/// count when the run does not time. The repeats are interleaved: every entry's first pass,
+/// then every entry's second, and so on, each timing's median and spread taken over its own
+/// passes. On a shared machine whose speed drifts over seconds, a slow phase then falls on
+/// every contender alike instead of on one index's run of repeats, which keeps the ratios
+/// between indices of one run steadier. Each entry's last pass at each thread count is checked
+/// against its counting pass.
+fn timed_passes(
+    run: &SetRun,
+    entries: &mut [Entry],
+    cfg: &SuiteConfig,
+    pools: &Pools,
+    res: &mut SuiteResult,
+) -> Vec<Vec<(usize, Option<Timing>)>> {
+    if !cfg.timed {
+        let threads = cfg.threads.last().copied().unwrap_or(1);
+        return entries.iter().map(|_| vec![(threads, None)]).collect();
+    }
+    let repeats = cfg.repeats.max(1);
+    let mut out = PassOutput::new(run.set.query(), run.rays.len());
+    let mut timings = vec![Vec::new(); entries.len()];
+    for (threads, pool) in &pools.0 {
+        let mut samples = vec![Vec::with_capacity(repeats); entries.len()];
+        for pass in 1..=repeats {
+            for (entry, samples) in entries.iter_mut().zip(&mut samples) {
+                samples
+                    .push(pool.install(|| time_pass(entry.index, entry.mode, run.rays, &mut out)));
+                if pass == repeats {
+                    let timed = out.hits();
+                    let m = compare_closest(run.rays, &entry.hits, &timed);
+                    entry.tally.record("counting-pass", m, res);
+                }
+            }
+        }
+        for (timing, samples) in timings.iter_mut().zip(samples) {
+            timing.push((*threads, Some(Timing::of(samples))));
+        }
+    }
+    timings
 }
 
 /// What the counting pass and verification found for one index on one set.

@@ -27,26 +27,16 @@ impl Timing {
     }
 }
 
-/// Runs `f` `repeats` times (at least once) and returns the median and spread.
-pub fn time_repeated(repeats: usize, mut f: impl FnMut()) -> Timing {
-    let samples: Vec<Duration> = (0..repeats.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed()
-        })
-        .collect();
-    summarize(samples)
-}
-
-/// Median and spread of non-empty samples.
-fn summarize(mut samples: Vec<Duration>) -> Timing {
-    samples.sort();
-    let repeats = samples.len();
-    Timing {
-        median: samples[repeats / 2],
-        spread: samples[repeats - 1] - samples[0],
-        repeats,
+impl Timing {
+    /// Median and spread of non-empty samples.
+    pub fn of(mut samples: Vec<Duration>) -> Timing {
+        samples.sort();
+        let repeats = samples.len();
+        Timing {
+            median: samples[repeats / 2],
+            spread: samples[repeats - 1] - samples[0],
+            repeats,
+        }
     }
 }
 
@@ -82,20 +72,52 @@ pub fn timed_pass_in(
     rays: &[Ray],
     repeats: usize,
 ) -> (Timing, BatchHits) {
-    match query {
-        Query::Closest => {
-            let mut out = vec![None; rays.len()];
-            let t = time_repeated(repeats, || {
-                index.closest_hits_in(mode, rays, &mut out, None)
-            });
-            (t, out)
-        }
-        Query::Any => {
-            let mut out = vec![false; rays.len()];
-            let t = time_repeated(repeats, || index.any_hits_in(mode, rays, &mut out, None));
-            (t, occluded(&out))
+    let mut out = PassOutput::new(query, rays.len());
+    let samples = (0..repeats.max(1))
+        .map(|_| time_pass(index, mode, rays, &mut out))
+        .collect();
+    (Timing::of(samples), out.hits())
+}
+
+/// Where a timed pass writes its answers, allocated once for all the passes over one batch
+/// (so a pass allocates nothing).
+pub enum PassOutput {
+    Closest(Vec<Option<Hit>>),
+    Any(Vec<bool>),
+}
+
+impl PassOutput {
+    /// Room for the answers to `query` on `rays` rays.
+    pub fn new(query: Query, rays: usize) -> PassOutput {
+        match query {
+            Query::Closest => PassOutput::Closest(vec![None; rays]),
+            Query::Any => PassOutput::Any(vec![false; rays]),
         }
     }
+
+    /// The last pass's answers.
+    pub fn hits(&self) -> BatchHits {
+        match self {
+            PassOutput::Closest(out) => out.clone(),
+            PassOutput::Any(out) => occluded(out),
+        }
+    }
+}
+
+/// One timed pass: the batch traced once in `mode` on the current rayon pool, no counting,
+/// the answers left in `out` (whose query it answers). Returns the wall time.
+pub fn time_pass(
+    index: &dyn TraceIndex,
+    mode: TraceMode,
+    rays: &[Ray],
+    out: &mut PassOutput,
+) -> Duration {
+    let start = Instant::now();
+    match out {
+        PassOutput::Closest(out) => index.closest_hits_in(mode, rays, out, None),
+        PassOutput::Any(out) => index.any_hits_in(mode, rays, out, None),
+    }
+    start.elapsed()
 }
 
 /// The counting pass: per-ray counters and the results, untimed.
@@ -136,10 +158,34 @@ mod tests {
     #[test]
     fn median_and_spread() {
         let ms = Duration::from_millis;
-        let t = summarize(vec![ms(5), ms(1), ms(9), ms(3), ms(4)]);
+        let t = Timing::of(vec![ms(5), ms(1), ms(9), ms(3), ms(4)]);
         assert_eq!((t.median, t.spread, t.repeats), (ms(4), ms(8), 5));
-        let mut calls = 0;
-        assert_eq!(time_repeated(0, || calls += 1).repeats, 1);
-        assert_eq!(calls, 1);
+    }
+
+    /// Zero repeats still time one pass, and the pass's answers are the index's.
+    #[test]
+    fn a_timed_pass_runs_at_least_once_and_keeps_its_answers() {
+        use crate::geometry::TriangleKernelKind;
+        use crate::index::{IndexSpec, build_index};
+        let scene = crate::scene::generators::generate("icosphere", 100, 1).unwrap();
+        let brute = build_index(
+            &IndexSpec::named("brute"),
+            &scene.geometry(),
+            TriangleKernelKind::Exact,
+        )
+        .unwrap();
+        let ray = Ray::new(
+            glam::Vec3::new(0.0, 0.0, -10.0),
+            glam::Vec3::Z,
+            0.0,
+            f32::INFINITY,
+        )
+        .unwrap();
+        let (t, hits) = timed_pass_in(brute.as_ref(), Query::Closest, TraceMode::Single, &[ray], 0);
+        assert_eq!(t.repeats, 1);
+        assert_eq!(hits, vec![brute.closest_hit(&ray)]);
+        assert!(hits[0].is_some());
+        let (_, any) = timed_pass_in(brute.as_ref(), Query::Any, TraceMode::Single, &[ray], 2);
+        assert!(any[0].is_some_and(|h| h.t.is_nan()));
     }
 }
