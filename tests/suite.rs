@@ -6,10 +6,12 @@ mod common;
 use accelbench::camera::Camera;
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::harness::suite::{ResultRow, Shard, SuiteConfig, run_suite_with};
+use accelbench::harness::suite::{
+    IndexBuilder, ResultRow, Shard, SuiteConfig, SuiteResult, run_suite_with,
+};
 use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{IndexSpec, TraceIndex, build_index, build_index_on};
-use accelbench::scene::{Triangles, generators};
+use accelbench::scene::{Scene, Triangles, generators};
 use common::drop_one::{DROPPED, DropOne};
 use indicatif::ProgressBar;
 
@@ -33,6 +35,11 @@ fn config(indices: &[&str]) -> SuiteConfig {
     }
 }
 
+/// The suite on one scene with the indices `build` makes.
+fn run_built_by(scene: Scene, cfg: &SuiteConfig, build: IndexBuilder) -> SuiteResult {
+    run_suite_with(&[scene], cfg, &ProgressBar::hidden(), build, &mut |_, _| {}).unwrap()
+}
+
 #[test]
 fn verification_reports_a_dropped_primitive_with_its_ray() {
     let scene = generators::generate("icosphere", 200, 1).unwrap();
@@ -46,14 +53,7 @@ fn verification_reports_a_dropped_primitive_with_its_ray() {
             build_index(spec, g, TriangleKernelKind::Watertight)
         }
     };
-    let res = run_suite_with(
-        &[scene],
-        &cfg,
-        &ProgressBar::hidden(),
-        &build,
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let res = run_built_by(scene, &cfg, &build);
     let bad: Vec<&ResultRow> = res.rows.iter().filter(|r| r.mismatches > 0).collect();
     assert!(!bad.is_empty(), "the dropped primitive went unnoticed");
     assert!(bad.iter().all(|r| r.index == "drop-one"));
@@ -311,14 +311,7 @@ fn timed_passes_of_a_set_are_interleaved_across_indices() {
         let log = log.clone();
         Ok(Box::new(Logged { inner, log }) as Box<dyn TraceIndex>)
     };
-    let res = run_suite_with(
-        &[scene],
-        &cfg,
-        &ProgressBar::hidden(),
-        &build,
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let res = run_built_by(scene, &cfg, &build);
     let one_round = ["bvh", "bvh8", "grid"];
     let expected: Vec<&str> = one_round.repeat(3 * 2);
     assert_eq!(*log.lock().unwrap(), expected);
