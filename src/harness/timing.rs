@@ -25,9 +25,7 @@ impl Timing {
     pub fn rays_per_sec(&self, rays: usize) -> f64 {
         rays as f64 / self.median.as_secs_f64().max(1e-12)
     }
-}
 
-impl Timing {
     /// Median and spread of non-empty samples.
     pub fn of(mut samples: Vec<Duration>) -> Timing {
         samples.sort();
