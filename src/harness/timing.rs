@@ -52,27 +52,17 @@ fn occluded(any: &[bool]) -> BatchHits {
         .collect()
 }
 
-/// The timed pass: runs the batch `repeats` times on the current rayon pool, no counting.
+/// The timed pass: runs the batch ray by ray `repeats` times (at least once) on the current
+/// rayon pool, no counting. Returns the median and spread, and the last run's answers.
 pub fn timed_pass(
     index: &dyn TraceIndex,
     query: Query,
     rays: &[Ray],
     repeats: usize,
 ) -> (Timing, BatchHits) {
-    timed_pass_in(index, query, TraceMode::Single, rays, repeats)
-}
-
-/// [`timed_pass`] with the batch traced in `mode` (last hit first, packets).
-pub fn timed_pass_in(
-    index: &dyn TraceIndex,
-    query: Query,
-    mode: TraceMode,
-    rays: &[Ray],
-    repeats: usize,
-) -> (Timing, BatchHits) {
     let mut out = PassOutput::new(query, rays.len());
     let samples = (0..repeats.max(1))
-        .map(|_| time_pass(index, mode, rays, &mut out))
+        .map(|_| time_pass(index, TraceMode::Single, rays, &mut out))
         .collect();
     (Timing::of(samples), out.hits())
 }
@@ -179,11 +169,11 @@ mod tests {
             f32::INFINITY,
         )
         .unwrap();
-        let (t, hits) = timed_pass_in(brute.as_ref(), Query::Closest, TraceMode::Single, &[ray], 0);
+        let (t, hits) = timed_pass(brute.as_ref(), Query::Closest, &[ray], 0);
         assert_eq!(t.repeats, 1);
         assert_eq!(hits, vec![brute.closest_hit(&ray)]);
         assert!(hits[0].is_some());
-        let (_, any) = timed_pass_in(brute.as_ref(), Query::Any, TraceMode::Single, &[ray], 2);
+        let (_, any) = timed_pass(brute.as_ref(), Query::Any, &[ray], 2);
         assert!(any[0].is_some_and(|h| h.t.is_nan()));
     }
 }
