@@ -3,6 +3,7 @@
 //! kernel, so a triangle-only scene never pays for a sphere branch and the kernel choice costs no
 //! dispatch.
 
+use super::accept::{accept, accept_lanes};
 use crate::geometry::clip::triangle_clipped_bounds;
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
@@ -103,16 +104,6 @@ fn triangle_plane(t: &Triangle) -> Option<(Vec3A, f32)> {
     (n != Vec3A::ZERO).then(|| (n, n.dot(t.v[0])))
 }
 
-/// Clamps a kernel's `t` into the slab interval of `bounds` and applies the `[t_min, t_max]`
-/// acceptance (see the [`Geometry`] contract).
-#[inline(always)]
-fn accept(t: Option<f32>, bounds: Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
-    let t = t?;
-    let (enter, exit) = bounds.ray_interval(ray, f32::NEG_INFINITY, f32::INFINITY)?;
-    let t = t.max(enter).min(exit);
-    (t >= ray.t_min && t <= t_max).then_some(t)
-}
-
 /// Scene primitives shared (cheap to clone) by every index built on one scene.
 #[derive(Debug, Clone, Default)]
 pub struct SceneGeometry {
@@ -206,23 +197,18 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     fn block_triangle(&self, prim: u32) -> Option<Triangle> {
         Some(self.tris[prim as usize])
     }
-    /// The kernel's lane form decides what it can; undecided lanes take the scalar kernel;
-    /// every lane's `t` then goes through the same [`accept`] as in [`Geometry::intersect`].
+    /// The kernel's lane form decides what it can and its hits go through [`accept_lanes`];
+    /// undecided lanes take the scalar kernel and [`accept`], as in [`Geometry::intersect`].
     #[inline]
     fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
         let lanes = K::intersect_lanes(&block.tris, ray);
-        let mut todo = lanes.hit | lanes.scalar;
-        let mut out = (0, [0.0; 4]);
+        let mut out = accept_lanes(lanes.hit, lanes.t, &block.tris, ray, t_max);
+        let mut todo = lanes.scalar;
         while todo != 0 {
             let i = todo.trailing_zeros() as usize;
             todo &= todo - 1;
             let tri = block.tris.triangle(i);
-            let t = if lanes.scalar >> i & 1 == 1 {
-                K::intersect(&tri, ray, ray.t_max)
-            } else {
-                Some(lanes.t[i])
-            };
-            if let Some(t) = accept(t, tri.bounds(), ray, t_max) {
+            if let Some(t) = accept(K::intersect(&tri, ray, ray.t_max), tri.bounds(), ray, t_max) {
                 out.0 |= 1 << i;
                 out.1[i] = t;
             }

@@ -1,5 +1,6 @@
 //! Scenes: primitives stored per type, lights, an optional camera, and where they came from.
 
+mod accept;
 mod area_light;
 mod error;
 pub mod file;
