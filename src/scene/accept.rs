@@ -112,8 +112,9 @@ mod tests {
     use crate::geometry::Triangle;
     use glam::Vec3A;
 
-    /// Small integers, zeros of both signs and infinities' neighbours, so ties, signed zeros,
-    /// zero direction components and origins on slab planes all occur.
+    /// Draws from `choices`: small values, zeros of both signs and coordinates near
+    /// `f32::MAX`, so ties, signed zeros, zero direction components, origins on slab planes
+    /// and overflowing differences `plane - origin` all occur.
     fn pick(state: &mut u64, choices: &[f32]) -> f32 {
         *state = state
             .wrapping_mul(6364136223846793005)
@@ -123,7 +124,9 @@ mod tests {
 
     #[test]
     fn the_lane_form_is_the_scalar_form_bit_for_bit() {
-        let coords = [-2.0, -1.0, -0.0, 0.0, 0.5, 1.0, 3.0, 1e-30, -7.25];
+        let coords = [
+            -2.0, -1.0, -0.0, 0.0, 0.5, 1.0, 3.0, 1e-30, -7.25, 3e38, -3e38,
+        ];
         let dirs = [-1.0, -0.0, 0.0, 0.25, 1.0, -3.0, 1e-20];
         let ts = [-1.0, -0.0, 0.0, 0.5, 1.0, 2.0, 10.0, f32::NAN, 1e30];
         let mut s = 7u64;
