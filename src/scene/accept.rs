@@ -55,17 +55,24 @@ pub fn accept_lanes(
     ray: &Ray,
     t_max: f32,
 ) -> (u32, [f32; 4]) {
-    match ray.inv_dir.is_finite() {
+    match ray.inv_dir.is_finite() && ray.t_min >= 0.0 {
         true => accept_lanes_in::<false>(hit, t, tris, ray, t_max),
         false => accept_lanes_in::<true>(hit, t, tris, ray, t_max),
     }
 }
 
-/// [`accept_lanes`] with (`NAN`) or without the NaN selects: with every `inv_dir` component
-/// finite, `(plane - origin) * inv_dir` of finite planes is never NaN (a finite or infinite
-/// difference times a finite nonzero factor), so the selects are identities and are skipped.
+/// [`accept_lanes`] in two variants, as the node slab test ([`crate::index::bvh::slab`]):
+/// `SAFE = false` for rays whose `inv_dir` components are all finite and whose `t_min >= 0`,
+/// `SAFE = true` for the others. Without `SAFE`:
+/// - the NaN selects are skipped: `(plane - origin) * inv_dir` of finite planes is never NaN
+///   (a finite or infinite difference times a finite nonzero factor), so they are identities;
+/// - the far distance is widened as `far * SLAB_FAR_SCALE` alone. Where `far >= 0` (`-0`
+///   included) that is the scalar form's choice; where `far < 0`, both that product and the
+///   scalar form's `far * (2 - SLAB_FAR_SCALE)` are negative (a factor near 1 does not round a
+///   nonzero `far` to zero), so the clamped `t`, at most the exit, lies below `t_min >= 0` and
+///   the lane is rejected either way.
 #[inline(always)]
-fn accept_lanes_in<const NAN: bool>(
+fn accept_lanes_in<const SAFE: bool>(
     hit: u32,
     t: [f32; 4],
     tris: &TriangleLanes,
@@ -73,7 +80,7 @@ fn accept_lanes_in<const NAN: bool>(
     t_max: f32,
 ) -> (u32, [f32; 4]) {
     let corner = |c: usize, k: usize| Vec4::from_array(tris.v[c][k]);
-    let not_nan = |x: Vec4, fill: f32| match NAN {
+    let not_nan = |x: Vec4, fill: f32| match SAFE {
         true => Vec4::select(x.cmpeq(x), x, Vec4::splat(fill)),
         false => x,
     };
@@ -93,12 +100,17 @@ fn accept_lanes_in<const NAN: bool>(
     // `Vec3A::max_element` / `min_element`: `(x op z) op (y op z)`.
     let enter = nx.max(nz).max(ny.max(nz));
     let far = fx.min(fz).min(fy.min(fz));
-    let scale = Vec4::select(
-        far.cmpge(Vec4::ZERO),
-        Vec4::splat(SLAB_FAR_SCALE),
-        Vec4::splat(2.0 - SLAB_FAR_SCALE),
-    );
-    let exit = far * scale;
+    let exit = match SAFE {
+        true => {
+            let scale = Vec4::select(
+                far.cmpge(Vec4::ZERO),
+                Vec4::splat(SLAB_FAR_SCALE),
+                Vec4::splat(2.0 - SLAB_FAR_SCALE),
+            );
+            far * scale
+        }
+        false => far * Vec4::splat(SLAB_FAR_SCALE),
+    };
     let t = Vec4::from_array(t);
     let t = Vec4::select(enter.cmpgt(t), enter, t);
     let t = Vec4::select(exit.cmplt(t), exit, t);

@@ -32,7 +32,7 @@ pub struct WideNode<const C: usize> {
 const _: () = assert!(size_of::<WideNode<1>>() == 128 && size_of::<WideNode<2>>() == 256);
 
 impl<const C: usize> WideNode<C> {
-    fn new(kids: &[(Aabb, Child)]) -> WideNode<C> {
+    pub(super) fn new(kids: &[(Aabb, Child)]) -> WideNode<C> {
         debug_assert!((2..=4 * C).contains(&kids.len()) || kids.len() == 1);
         let mut n = WideNode {
             children: [[Child::default(); 4]; C],

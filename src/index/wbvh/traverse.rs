@@ -5,8 +5,9 @@
 //! direction signs, with the entries and decisions of the scalar
 //! [`crate::geometry::Aabb::ray_interval`], so conservative and monotone like it). Closest hit visits the nearest hit child and
 //! pushes the others farthest first: one hit child is visited at once, two are ordered by one
-//! comparison, more by an insertion sort of integer keys (entry bits and lane, so items move in
-//! one register and the sort's stores forward to its loads); any-hit pushes all but one.
+//! comparison, three by a network of three compare-exchanges of integer keys (entry bits and
+//! lane, so items move in one register), with no branch on the order, more by an insertion
+//! sort of the keys (whose stores forward to its loads); any-hit pushes all but one.
 //!
 //! Node and leaf loads dominate the time (they miss the caches on incoherent rays), so a step
 //! asks for the node's reference line along with its box lines (the references are read only
@@ -90,14 +91,30 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
             return Some(node.child(near));
         }
         // Three or more: lanes sorted by entry, farthest first, as integer keys (the entry's
-        // order-preserving bits above the lane), an insertion sort of at most 8.
+        // order-preserving bits above the lane, so no two are equal). Exactly three by a
+        // network of three compare-exchanges, which has no branch to mispredict; more by an
+        // insertion sort of at most 8.
+        let key = |i: usize| u64::from(order_bits(enter[i])) << 32 | i as u64;
+        let third = rest & (rest - 1);
+        if third & (third - 1) == 0 {
+            let (a, b) = (key(first), key(rest.trailing_zeros() as usize));
+            let c = key(third.trailing_zeros() as usize);
+            let (a, b) = (a.max(b), a.min(b));
+            let (b, nearest) = (b.max(c), b.min(c));
+            let (a, b) = (a.max(b), a.min(b));
+            for k in [a, b] {
+                let i = (k & 7) as usize;
+                self.push(node.child(i), enter[i], s.stack);
+            }
+            return Some(node.child((nearest & 7) as usize));
+        }
         let mut keys = [0u64; 8];
         let mut n = 0usize;
         let mut mask = mask;
         while mask != 0 {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let key = u64::from(order_bits(enter[i])) << 32 | i as u64;
+            let key = key(i);
             let mut j = n;
             while j > 0 && keys[j - 1] < key {
                 keys[j] = keys[j - 1];
@@ -129,5 +146,79 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
         }
         let i = mask.trailing_zeros() as usize;
         Some(node.child(i))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Aabb, Ray};
+    use crate::index::NoStats;
+    use crate::index::bvh::leaves::Leaves;
+    use crate::index::bvh::slab::SlabRay;
+    use glam::{Vec3, Vec3A};
+
+    /// One closest-hit step on a node whose children lie along the ray at `entries` (child `i`
+    /// a box from `entries[i]` to `entries[i] + 0.5` on `x`): the child it returns, then the
+    /// stack's entries as they pop.
+    fn step(entries: &[f32]) -> (Child, Vec<Entry>) {
+        let kids: Vec<(Aabb, Child)> = entries
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| {
+                let b = Aabb::new(Vec3A::new(x, -1.0, -1.0), Vec3A::new(x + 0.5, 1.0, 1.0));
+                (b, Child::inner(i as u32 + 1))
+            })
+            .collect();
+        let nodes = [WideNode::<2>::new(&kids)];
+        let root_bounds = kids.iter().fold(kids[0].0, |b, k| b.union(k.0));
+        let tree = Tree {
+            top: walk::Top {
+                root_bounds: &root_bounds,
+                root: Child::inner(0),
+                leaves: Leaves::Ids(&[]),
+            },
+            nodes: &nodes,
+        };
+        let ray = Ray::new(Vec3::ZERO, Vec3::X, 0.0, f32::INFINITY).unwrap();
+        let mut stack = Stack::<Entry, STACK>::new();
+        let next = tree
+            .closest::<true, NoStats>(Step {
+                node: 0,
+                ray: &SlabRay::new(&ray),
+                t_max: f32::INFINITY,
+                stats: &mut NoStats,
+                stack: &mut stack,
+            })
+            .unwrap();
+        (next, std::iter::from_fn(|| stack.pop()).collect())
+    }
+
+    /// Every number of hit children from 1 to 8, in every order of their distances up to
+    /// rotations and reversals, and with ties: the step visits the nearest (the lowest lane
+    /// among equal entries) and pushes the others so that they pop nearest first, each with its
+    /// entry, none lost or repeated.
+    #[test]
+    fn hit_children_pop_front_to_back() {
+        for n in 1..=8usize {
+            let orders: Vec<Vec<f32>> = (0..n)
+                .flat_map(|r| {
+                    let up: Vec<f32> = (0..n).map(|i| ((i + r) % n) as f32 + 1.0).collect();
+                    let down = up.iter().rev().copied().collect();
+                    let ties = up.iter().map(|x| (x / 2.0).floor() + 1.0).collect();
+                    [up, down, ties]
+                })
+                .collect();
+            for entries in orders {
+                let (next, popped) = step(&entries);
+                let mut want: Vec<(u32, f32)> =
+                    (0..n).map(|i| (i as u32 + 1, entries[i])).collect();
+                want.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+                let got: Vec<(u32, f32)> = std::iter::once((next.index, want[0].1))
+                    .chain(popped.iter().map(|(c, e)| (c.index, *e)))
+                    .collect();
+                assert_eq!(got, want, "entries {entries:?}");
+            }
+        }
     }
 }
