@@ -72,6 +72,14 @@ impl Ray {
         Ray::new(self.origin.into(), self.dir.into(), t_min, t_max)
     }
 
+    /// Whether the slab tests may take their variant without NaN selects and with the far
+    /// distance widened by one product (`SAFE = false` in `index::bvh::slab` and in
+    /// `scene::accept`): every `inv_dir` component finite and `t_min >= 0`.
+    #[inline(always)]
+    pub fn fast_slabs(&self) -> bool {
+        self.inv_dir.is_finite() && self.t_min >= 0.0
+    }
+
     /// The point at parameter `t`.
     #[inline]
     pub fn at(&self, t: f32) -> Vec3A {

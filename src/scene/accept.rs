@@ -55,15 +55,15 @@ pub fn accept_lanes(
     ray: &Ray,
     t_max: f32,
 ) -> (u32, [f32; 4]) {
-    match ray.inv_dir.is_finite() && ray.t_min >= 0.0 {
+    match ray.fast_slabs() {
         true => accept_lanes_in::<false>(hit, t, tris, ray, t_max),
         false => accept_lanes_in::<true>(hit, t, tris, ray, t_max),
     }
 }
 
 /// [`accept_lanes`] in two variants, as the node slab test ([`crate::index::bvh::slab`]):
-/// `SAFE = false` for rays whose `inv_dir` components are all finite and whose `t_min >= 0`,
-/// `SAFE = true` for the others. Without `SAFE`:
+/// `SAFE = false` for rays whose `inv_dir` components are all finite and whose `t_min >= 0`
+/// ([`Ray::fast_slabs`]), `SAFE = true` for the others. Without `SAFE`:
 /// - the NaN selects are skipped: `(plane - origin) * inv_dir` of finite planes is never NaN
 ///   (a finite or infinite difference times a finite nonzero factor), so they are identities;
 /// - the far distance is widened as `far * SLAB_FAR_SCALE` alone. Where `far >= 0` (`-0`

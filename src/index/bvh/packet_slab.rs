@@ -12,13 +12,13 @@
 //! (see [`super::walk`]). `tests` checks it lane by lane.
 //!
 //! `SAFE` is chosen once per packet: `true` when any ray needs it (a non-finite `inv_dir`
-//! component or `t_min < 0`, [`SlabRay::fast`]). The NaN select is the identity on every lane
+//! component or `t_min < 0`, [`Ray::fast_slabs`]). The NaN select is the identity on every lane
 //! whose products are not NaN, and the far distance's widening on either sign decides as the
 //! one-sided one when `t_min >= 0`, so fast rays in a `SAFE` packet get their `SAFE = false`
 //! decisions and entries (checked in `tests`).
 
 use super::lanes::Lanes;
-use super::slab::{SlabRay, slab_lanes};
+use super::slab::slab_lanes;
 use crate::geometry::Ray;
 
 /// A packet's slab constants, lane `k` from ray `k` (lanes past the packet's rays copy ray 0;
@@ -28,7 +28,7 @@ pub struct PacketRays<V> {
     origin: [V; 3],
     inv_dir: [V; 3],
     t_min: V,
-    /// Whether every ray may take the `SAFE = false` test ([`SlabRay::fast`]).
+    /// Whether every ray may take the `SAFE = false` test ([`Ray::fast_slabs`]).
     fast: bool,
 }
 
@@ -48,7 +48,7 @@ impl<V: Lanes> PacketRays<V> {
             origin: [0, 1, 2].map(|i| lanes(&|r| r.origin[i])),
             inv_dir: [0, 1, 2].map(|i| lanes(&|r| r.inv_dir[i])),
             t_min: lanes(&|r| r.t_min),
-            fast: rays.iter().all(SlabRay::fast),
+            fast: rays.iter().all(Ray::fast_slabs),
         }
     }
 
@@ -84,9 +84,9 @@ mod tests {
     use super::*;
     use crate::geometry::Aabb;
     use crate::index::bvh::lanes::F8;
-    use crate::index::bvh::slab::hit_near_far;
     use crate::index::bvh::slab::tests::Rng;
     use crate::index::bvh::slab::tests::near_far_lanes;
+    use crate::index::bvh::slab::{SlabRay, hit_near_far};
     use glam::{Vec3, Vec4};
 
     /// The wide nodes' single-ray test of `b`: its decision and entry.
@@ -130,7 +130,7 @@ mod tests {
             let all_fast = rng.next().is_multiple_of(2);
             while rays.len() < V::WIDTH {
                 let (r, t) = ray(&mut rng);
-                if !all_fast || SlabRay::fast(&r) {
+                if !all_fast || r.fast_slabs() {
                     rays.push((r, t));
                 }
             }
@@ -158,7 +158,7 @@ mod tests {
                 );
                 let scalar = b.ray_entry(r, r.t_min, *t);
                 assert_eq!(want.map(f32::from_bits), scalar, "{r:?} {b:?}");
-                if SlabRay::fast(r) {
+                if r.fast_slabs() {
                     fast_lanes += 1;
                     assert_eq!(single::<false>(&b, r, *t), want, "{r:?} {b:?}");
                 }

@@ -18,7 +18,7 @@
 //! [`hit_near_far`] tests four or eight boxes against one ray (the wide BVH's nodes) with the
 //! planes chosen by the ray's direction signs (below).
 //!
-//! Two variants, chosen once per ray by [`SlabRay::fast`] (once per packet by the packet
+//! Two variants, chosen once per ray by [`Ray::fast_slabs`] (once per packet by the packet
 //! walk: `SAFE` when any of its rays needs it, which changes no fast lane's decision or entry):
 //! - `SAFE = false` when every component of `inv_dir` is finite and `t_min >= 0`. A product
 //!   `(p - o) * inv` can then not be NaN: `p - o` is finite or, on overflow, infinite, and `inv`
@@ -67,13 +67,6 @@ impl SlabRay {
             t_min: Vec4::splat(ray.t_min),
             near: [0, 1, 2].map(|k| usize::from(i[k].is_sign_negative())),
         }
-    }
-
-    /// Whether the ray may take the `SAFE = false` variant (every `inv_dir` component finite,
-    /// `t_min >= 0`).
-    #[inline(always)]
-    pub fn fast(ray: &Ray) -> bool {
-        ray.inv_dir.is_finite() && ray.t_min >= 0.0
     }
 }
 
@@ -265,7 +258,7 @@ pub(crate) mod tests {
             let want = boxes.map(|b| scalar(&b, &ray, t_max));
             // The safe variant must agree on every ray, the fast one on the rays it is chosen for.
             assert_eq!(both::<true>(&node, &ray, t_max), want, "{ray:?} {boxes:?}");
-            if SlabRay::fast(&ray) {
+            if ray.fast_slabs() {
                 assert_eq!(both::<false>(&node, &ray, t_max), want, "{ray:?} {boxes:?}");
             } else {
                 safe_rays += 1;
@@ -342,7 +335,7 @@ pub(crate) mod tests {
                 lanes((mask, enter.to_lanes()))
             };
             let mut safe_kinds = vec![true];
-            if SlabRay::fast(&ray) {
+            if ray.fast_slabs() {
                 safe_kinds.push(false);
             } else {
                 safe_rays += 1;
@@ -371,7 +364,7 @@ pub(crate) mod tests {
                     ([1.0, -1.0, z], [dz, 1.0, 0.0]),
                 ] {
                     let ray = Ray::infinite(Vec3::from(o), Vec3::from(d)).unwrap();
-                    assert!(!SlabRay::fast(&ray));
+                    assert!(!ray.fast_slabs());
                     let got = both::<true>(&node, &ray, f32::INFINITY);
                     assert!(got.iter().all(Option::is_some), "{o:?} {d:?}: {got:?}");
                     assert_eq!(got, [unit, next].map(|b| scalar(&b, &ray, f32::INFINITY)));

@@ -11,7 +11,7 @@
 //! can hold no hit that beats or ties the best one. Leaves test their primitives through
 //! [`Geometry::intersect`] or its lane-wise block form (see [`super::leaves`]).
 //!
-//! Each query picks the slab variant once per ray ([`SlabRay::fast`]) and runs a loop
+//! Each query picks the slab variant once per ray ([`Ray::fast_slabs`]) and runs a loop
 //! monomorphized on it.
 
 use super::leaves::Leaves;
@@ -120,7 +120,7 @@ pub fn closest_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     tree.top()
         .root_bounds
         .ray_entry(ray, ray.t_min, ray.t_max)?;
-    if SlabRay::fast(ray) {
+    if ray.fast_slabs() {
         closest::<false, N, T, G, S>(tree, geom, ray, stats)
     } else {
         closest::<true, N, T, G, S>(tree, geom, ray, stats)
@@ -183,7 +183,7 @@ pub fn any_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     {
         return false;
     }
-    if SlabRay::fast(ray) {
+    if ray.fast_slabs() {
         any::<false, N, T, G, S>(tree, geom, ray, stats)
     } else {
         any::<true, N, T, G, S>(tree, geom, ray, stats)

@@ -194,10 +194,10 @@ mod tests {
         (next, std::iter::from_fn(|| stack.pop()).collect())
     }
 
-    /// Every number of hit children from 1 to 8, in every order of their distances up to
-    /// rotations and reversals, and with ties: the step visits the nearest (the lowest lane
-    /// among equal entries) and pushes the others so that they pop nearest first, each with its
-    /// entry, none lost or repeated.
+    /// Every number of hit children from 1 to 8, their distances in every rotation of the
+    /// increasing order, its reversal, and with ties (for three children, every order): the
+    /// step visits the nearest (the lowest lane among equal entries) and pushes the others so
+    /// that they pop nearest first, each with its entry, none lost or repeated.
     #[test]
     fn hit_children_pop_front_to_back() {
         for n in 1..=8usize {
