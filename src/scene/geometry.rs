@@ -199,9 +199,14 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     }
     /// The kernel's lane form decides what it can and its hits go through [`accept_lanes`];
     /// undecided lanes take the scalar kernel and [`accept`], as in [`Geometry::intersect`].
+    /// A block the lane form decided to be all misses (most blocks a ray tests) skips the
+    /// clamp.
     #[inline]
     fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
         let lanes = K::intersect_lanes(&block.tris, ray);
+        if lanes.hit | lanes.scalar == 0 {
+            return (0, [0.0; 4]);
+        }
         let mut out = accept_lanes(lanes.hit, lanes.t, &block.tris, ray, t_max);
         let mut todo = lanes.scalar;
         while todo != 0 {

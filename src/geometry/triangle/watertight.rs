@@ -10,7 +10,8 @@
 //! each lane of [`Vec4`] does the scalar kernel's `f32` operations in the same order (IEEE
 //! `sub`, `mul`, `add`, `div`; Rust never fuses them into a multiply-add), so a decided lane's
 //! `t` is the scalar kernel's bit for bit. A lane with an edge function exactly zero, which
-//! the scalar kernel recomputes in `f64`, is left to the scalar kernel.
+//! the scalar kernel recomputes in `f64`, is left to the scalar kernel. A block whose every
+//! lane has mixed signs and no zero (a decided miss) returns before `t` is computed.
 
 use super::RealKernel;
 use super::lanes::{LaneHits, TriangleLanes};
@@ -64,6 +65,10 @@ impl RealKernel for Watertight {
             |f: fn(Vec4, Vec4) -> glam::BVec4A| (f(u, zero) | f(v, zero) | f(w, zero)).bitmask();
         let undecided = any(Vec4::cmpeq);
         let mixed = any(Vec4::cmplt) & any(Vec4::cmpgt);
+        // Every lane a decided miss (the common block): no `t` to compute.
+        if (!mixed | undecided) & 0b1111 == 0 {
+            return LaneHits::MISS;
+        }
         let det = u + v + w;
         let t_scaled = u * (sz * a[s.kz]) + v * (sz * b[s.kz]) + w * (sz * c[s.kz]);
         let t = t_scaled / det;
@@ -113,8 +118,9 @@ mod tests {
 
     /// Decided lanes equal the scalar kernel bit for bit on random triangles at several scales,
     /// with rays aimed inside them, at their corners and edge midpoints (edge functions exactly
-    /// zero: lanes left to the scalar kernel), from inside their plane, and with `t` intervals
-    /// that cut hits off; hits, misses and undecided lanes all occur.
+    /// zero: lanes left to the scalar kernel), beside them, from inside their plane, and with
+    /// `t` intervals that cut hits off; hits, misses, undecided lanes and blocks of misses
+    /// only all occur.
     #[test]
     fn decided_lanes_equal_the_scalar_kernel() {
         let mut unit = unit_floats(0x05ee_d0f1_a7e5);
@@ -132,6 +138,8 @@ mod tests {
             let target = match round % 5 {
                 0 => tris[0].v[round % 3],
                 1 => (tris[0].v[1] + tris[0].v[2]) * 0.5,
+                // Beyond corner 0, outside the triangle: often no lane is hit.
+                2 => tris[0].v[0] * 2.0 - (tris[0].v[1] + tris[0].v[2]) * 0.5,
                 _ => tris[0].v[0] * 0.3 + tris[0].v[1] * 0.3 + tris[0].v[2] * 0.4,
             };
             let (t_min, t_max) = [(0.0, f32::INFINITY), (-1.0, 1.5), (0.5, 0.9)][round % 3];

@@ -126,8 +126,9 @@ mod tests {
     }
 
     /// Decided lanes equal the scalar kernel bit for bit, on random triangles and rays aimed at
-    /// their corners and edges (where the filter hands lanes to the scalar kernel), with rays
-    /// far from the triangles too; both outcomes and both paths occur.
+    /// their corners and edges (where the filter hands lanes to the scalar kernel) and beside
+    /// them, with rays far from the triangles too; both outcomes, both paths and blocks of
+    /// misses only occur.
     #[test]
     fn decided_lanes_equal_the_scalar_kernel() {
         let mut point = points(0x1234_5678_9abc_def1);
@@ -141,6 +142,8 @@ mod tests {
             let target = match round % 5 {
                 0 => tris[0].v[0],
                 1 => (tris[0].v[1] + tris[0].v[2]) * 0.5,
+                // Beyond corner 0, outside the triangle: often no lane is hit.
+                2 => tris[0].v[0] * 2.0 - (tris[0].v[1] + tris[0].v[2]) * 0.5,
                 _ => tris[0].v[0] * 0.3 + tris[0].v[1] * 0.3 + tris[0].v[2] * 0.4,
             };
             let Ok(ray) = Ray::new(o.into(), Vec3::from(target - o), 0.0, f32::INFINITY) else {

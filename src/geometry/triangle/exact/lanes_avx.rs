@@ -2,7 +2,8 @@
 //! [`super::lanes::portable`] as four `f64` lanes of `__m256d`, instruction for instruction the
 //! same operations in the same order (`sub`, `mul`, `add`, `div`, no fused multiply-add; the
 //! rounding to `f32` by `vcvtpd2ps`, round to nearest like `as f32`), and the per-lane decision
-//! (filter, signs, finite `t`, interval) as masks instead of branches. A decided lane's `t` is
+//! (filter, signs, finite `t`, interval) as masks instead of branches, with one branch: a block
+//! whose every lane is a certified miss returns before `t` is computed. A decided lane's `t` is
 //! therefore the portable form's, and so the scalar kernel's, bit for bit; `tests` checks the
 //! two forms against each other.
 //!
@@ -74,6 +75,16 @@ pub fn intersect_lanes(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
         let axis = |k: usize| _mm256_max_pd(_mm256_max_pd(abs(a[k]), abs(b[k])), abs(c[k]));
         let m = _mm256_max_pd(axis(0), _mm256_max_pd(axis(1), axis(2)));
         let e = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(FILTER * d_sum), m), m);
+        let gt = |x: __m256d, y: __m256d| _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(x, y));
+        let zero = _mm256_setzero_pd();
+        let certified = gt(abs(u), e) & gt(abs(v), e) & gt(abs(w), e);
+        let negative = gt(zero, u) | gt(zero, v) | gt(zero, w);
+        let positive = gt(u, zero) | gt(v, zero) | gt(w, zero);
+        let same_sign = certified & !(negative & positive);
+        // Every lane a certified miss (the common block): no `t` to compute.
+        if (same_sign | !certified) & 0b1111 == 0 {
+            return LaneHits::MISS;
+        }
         let num = _mm256_add_pd(
             _mm256_add_pd(_mm256_mul_pd(u, a[k]), _mm256_mul_pd(v, b[k])),
             _mm256_mul_pd(w, c[k]),
@@ -81,12 +92,6 @@ pub fn intersect_lanes(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
         let den = _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(u, v), w), d[k]);
         let t = _mm256_cvtpd_ps(_mm256_div_pd(num, den));
 
-        let gt = |x: __m256d, y: __m256d| _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(x, y));
-        let zero = _mm256_setzero_pd();
-        let certified = gt(abs(u), e) & gt(abs(v), e) & gt(abs(w), e);
-        let negative = gt(zero, u) | gt(zero, v) | gt(zero, w);
-        let positive = gt(u, zero) | gt(v, zero) | gt(w, zero);
-        let same_sign = certified & !(negative & positive);
         let abs_t = _mm_andnot_ps(_mm_set1_ps(-0.0), t);
         let finite = _mm_movemask_ps(_mm_cmp_ps::<_CMP_LT_OQ>(abs_t, _mm_set1_ps(f32::INFINITY)));
         let in_range = _mm_movemask_ps(_mm_and_ps(
