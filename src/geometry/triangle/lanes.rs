@@ -80,7 +80,8 @@ pub fn scalar_lanes<K: TriangleKernel>(
 }
 
 /// What the lane-form tests saw: decided hits and misses, lanes left to the scalar kernel, and
-/// blocks whose every lane was a decided miss (the lane forms' early exit).
+/// blocks whose every lane was a decided miss (among them the blocks the lane forms' early exit
+/// returns: every lane missed by its signs).
 #[cfg(test)]
 #[derive(Debug, Default)]
 pub struct LaneTally {
