@@ -168,3 +168,32 @@ fn triangle_scenes_get_simd_leaves_and_mixed_scenes_keep_id_leaves() {
         0.0
     );
 }
+
+/// `bvh8`'s chunk tracing (camera-like chunks ray by ray, scattered ones two walks at a time)
+/// returns, ray for ray, what its single-ray query returns, hit and counters alike: the
+/// interleaved walks are the single-ray walks.
+#[test]
+fn chunks_trace_like_single_rays() {
+    use accelbench::geometry::triangle::Exact;
+    use accelbench::index::Counters;
+    use accelbench::rays::{incoherent_rays, primary_rays};
+    let scene = generators::generate("icosphere", 20_000, 5).unwrap();
+    let b = scene.ray_set_bounds();
+    let mut rays = primary_rays(&b, 40, 40).unwrap();
+    rays.extend(incoherent_rays(&b, 3000, 7));
+    let geom = Triangles::<Exact>::new(scene.triangles.into());
+    let index = Bvh8::build(&geom, &BvhParams::default()).unwrap();
+    let mut hits = 0;
+    for chunk in rays.chunks(64) {
+        let mut got = vec![None; chunk.len()];
+        let mut counted = vec![Counters::default(); chunk.len()];
+        index.closest_hits_chunk(&geom, chunk, &mut got, &mut counted);
+        for (i, ray) in chunk.iter().enumerate() {
+            let mut c = Counters::default();
+            let want = index.closest_hit(&geom, ray, &mut c);
+            assert_eq!((got[i], counted[i]), (want, c), "{ray:?}");
+            hits += usize::from(want.is_some());
+        }
+    }
+    assert!(hits > 1000, "{hits} hits");
+}

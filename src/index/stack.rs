@@ -34,6 +34,12 @@ impl<T: Copy, const N: usize> Stack<T, N> {
         self.len += keep as usize;
     }
 
+    /// Empties the stack.
+    #[inline(always)]
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
     #[inline(always)]
     pub fn pop(&mut self) -> Option<T> {
         self.len = self.len.checked_sub(1)?;

@@ -13,6 +13,10 @@
 //!
 //! Each query picks the slab variant once per ray ([`Ray::fast_slabs`]) and runs a loop
 //! monomorphized on it.
+//!
+//! A walk pauses between iterations ([`ClosestWalk`]), so a chunk of rays can also be walked
+//! two at a time, one step of each in turn ([`closest_hits_interleaved`]): the same walks and
+//! hits, with one ray's memory waits overlapped by the other's work.
 
 use super::leaves::Leaves;
 use super::node::Child;
@@ -108,6 +112,14 @@ macro_rules! tree_queries {
 }
 pub(crate) use tree_queries;
 
+/// Whether the ray meets the box of the whole tree in `[ray.t_min, ray.t_max]` (one box test).
+#[inline(always)]
+fn enters_root<T: Rooted, S: Stats>(tree: &T, ray: &Ray, stats: &mut S) -> bool {
+    stats.box_tests(1);
+    let entry = tree.top().root_bounds.ray_entry(ray, ray.t_min, ray.t_max);
+    entry.is_some()
+}
+
 /// The closest hit in `[ray.t_min, ray.t_max]` (see the module doc).
 #[inline(always)]
 pub fn closest_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
@@ -116,10 +128,9 @@ pub fn closest_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     ray: &Ray,
     stats: &mut S,
 ) -> Option<Hit> {
-    stats.box_tests(1);
-    tree.top()
-        .root_bounds
-        .ray_entry(ray, ray.t_min, ray.t_max)?;
+    if !enters_root(tree, ray, stats) {
+        return None;
+    }
     if ray.fast_slabs() {
         closest::<false, N, T, G, S>(tree, geom, ray, stats)
     } else {
@@ -134,34 +145,163 @@ fn closest<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stat
     ray: &Ray,
     stats: &mut S,
 ) -> Option<Hit> {
-    let slab_ray = SlabRay::new(ray);
-    let mut best = ClosestHit::new(ray.t_max);
-    let mut stack = Stack::<Entry, N>::new();
-    let top = tree.top();
-    let mut at = top.root;
-    loop {
+    let mut walk = ClosestWalk::<N>::new(tree.top().root, ray);
+    while walk.step::<SAFE, T, G, S>(tree, geom, stats) {}
+    walk.best.get()
+}
+
+/// One ray's closest-hit walk between two iterations of the loop: what [`closest_hit`] keeps.
+struct ClosestWalk<'r, const N: usize> {
+    ray: &'r Ray,
+    slab_ray: SlabRay,
+    best: ClosestHit,
+    stack: Stack<Entry, N>,
+    /// The subtree visited next.
+    at: Child,
+}
+
+impl<'r, const N: usize> ClosestWalk<'r, N> {
+    #[inline(always)]
+    fn new(root: Child, ray: &'r Ray) -> Self {
+        ClosestWalk {
+            ray,
+            slab_ray: SlabRay::new(ray),
+            best: ClosestHit::new(ray.t_max),
+            stack: Stack::new(),
+            at: root,
+        }
+    }
+
+    /// Starts over with `ray` (the stack's memory is reused, not copied).
+    #[inline(always)]
+    fn restart(&mut self, root: Child, ray: &'r Ray) {
+        self.ray = ray;
+        self.slab_ray = SlabRay::new(ray);
+        self.best = ClosestHit::new(ray.t_max);
+        self.stack.clear();
+        self.at = root;
+    }
+
+    /// Visits `at` (a node step, or a leaf's tests) and moves to the next subtree that can
+    /// still hold the closest hit; `false` when there is none (the walk is over).
+    #[inline(always)]
+    fn step<const SAFE: bool, T: BoxTree<N>, G: Geometry, S: Stats>(
+        &mut self,
+        tree: &T,
+        geom: &G,
+        stats: &mut S,
+    ) -> bool {
         stats.node_visit();
-        if at.is_leaf() {
-            top.leaves.closest(at, geom, ray, &mut best, stats);
+        if self.at.is_leaf() {
+            let leaves = tree.top().leaves;
+            leaves.closest(self.at, geom, self.ray, &mut self.best, stats);
         } else if let Some(next) = tree.closest::<SAFE, S>(Step {
-            node: at.index,
-            ray: &slab_ray,
-            t_max: best.t(),
+            node: self.at.index,
+            ray: &self.slab_ray,
+            t_max: self.best.t(),
             stats: &mut *stats,
-            stack: &mut stack,
+            stack: &mut self.stack,
         }) {
-            at = next;
-            continue;
+            self.at = next;
+            return true;
         }
         // Pop the next child that can still hold the closest hit (entry <= best t).
         loop {
-            let Some((next, entry)) = stack.pop() else {
-                return best.get();
+            let Some((next, entry)) = self.stack.pop() else {
+                return false;
             };
-            if entry <= best.t() {
-                at = next;
-                break;
+            if entry <= self.best.t() {
+                self.at = next;
+                return true;
             }
+        }
+    }
+}
+
+/// Whether the chunk's rays look like camera rays: the directions of its first, last and three
+/// evenly spaced rays between lie within about 25 degrees of the first's (cosine above 0.9; no
+/// square root, so the check costs a few operations per chunk). Camera rays (a segment of an
+/// image row) walk nearly the same nodes, which stay in cache, and the processor predicts each
+/// ray's branches from the ray before: interleaving their walks
+/// ([`closest_hits_interleaved`]) gains nothing there and mixes their branch histories (on the
+/// bunny's primary rays Callgrind's branch model counts 2.8 times the mispredictions).
+pub fn coherent(rays: &[Ray]) -> bool {
+    let Some(first) = rays.first() else {
+        return true;
+    };
+    let d0 = first.dir;
+    let n = rays.len() - 1;
+    [n / 4, n / 2, 3 * n / 4, n].iter().all(|&i| {
+        let d = rays[i].dir;
+        let dot = d.dot(d0);
+        dot > 0.0 && dot * dot > 0.81 * d.length_squared() * d0.length_squared()
+    })
+}
+
+/// Rays walked side by side by [`closest_hits_interleaved`].
+pub const INTERLEAVE: usize = 2;
+
+/// Closest hits of `rays`, [`INTERLEAVE`] walks at a time, one step of each in turn. Each
+/// walk is [`closest_hit`]'s own, on its own stack, so every hit is the same; the steps of
+/// different rays are independent, so the processor overlaps one ray's memory waits and
+/// dependency chains with another's work.
+#[inline(always)]
+pub fn closest_hits_interleaved<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
+    tree: &T,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [Option<Hit>],
+    stats: &mut [S],
+) {
+    const NONE: usize = usize::MAX;
+    if rays.is_empty() {
+        return;
+    }
+    let root = tree.top().root;
+    let mut next = 0;
+    // The next ray that needs a walk of the fast slab variant; the others are answered at once.
+    let start = |next: &mut usize, out: &mut [Option<Hit>], stats: &mut [S]| -> usize {
+        while *next < rays.len() {
+            let i = *next;
+            *next += 1;
+            let ray = &rays[i];
+            if !ray.fast_slabs() {
+                out[i] = closest_hit(tree, geom, ray, &mut stats[i]);
+                continue;
+            }
+            if !enters_root(tree, ray, &mut stats[i]) {
+                out[i] = None;
+                continue;
+            }
+            return i;
+        }
+        NONE
+    };
+    let mut ids = [NONE; INTERLEAVE];
+    for id in &mut ids {
+        *id = start(&mut next, out, stats);
+    }
+    // A slot without a ray holds a walk of the last ray that is never stepped.
+    let mut walks: [ClosestWalk<N>; INTERLEAVE] =
+        std::array::from_fn(|k| ClosestWalk::new(root, &rays[ids[k].min(rays.len() - 1)]));
+    loop {
+        let mut live = false;
+        for k in 0..INTERLEAVE {
+            let i = ids[k];
+            if i == NONE {
+                continue;
+            }
+            live = true;
+            if !walks[k].step::<false, T, G, S>(tree, geom, &mut stats[i]) {
+                out[i] = walks[k].best.get();
+                ids[k] = start(&mut next, out, stats);
+                if ids[k] != NONE {
+                    walks[k].restart(root, &rays[ids[k]]);
+                }
+            }
+        }
+        if !live {
+            return;
         }
     }
 }
@@ -174,13 +314,7 @@ pub fn any_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     ray: &Ray,
     stats: &mut S,
 ) -> bool {
-    stats.box_tests(1);
-    if tree
-        .top()
-        .root_bounds
-        .ray_entry(ray, ray.t_min, ray.t_max)
-        .is_none()
-    {
+    if !enters_root(tree, ray, stats) {
         return false;
     }
     if ray.fast_slabs() {
@@ -221,5 +355,42 @@ fn any<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
             return false;
         };
         at = next;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn rays(dirs: impl IntoIterator<Item = Vec3>) -> Vec<Ray> {
+        dirs.into_iter()
+            .map(|d| Ray::infinite(Vec3::ZERO, d).unwrap())
+            .collect()
+    }
+
+    /// A segment of an image row spanning 20 degrees (directions of any length) is coherent;
+    /// one spanning 30 degrees, one with its last direction reversed, or scattered directions
+    /// are not.
+    #[test]
+    fn camera_rows_are_coherent_and_scattered_directions_are_not() {
+        let row = |spread_deg: f32, n: usize| {
+            rays((0..n).map(|i| {
+                let a = (i as f32 / (n - 1).max(1) as f32 * spread_deg).to_radians();
+                Vec3::new(a.sin(), 0.0, -a.cos()) * (1.0 + i as f32)
+            }))
+        };
+        assert!(coherent(&[]));
+        assert!(coherent(&row(0.0, 1)));
+        assert!(coherent(&row(20.0, 64)));
+        assert!(!coherent(&row(30.0, 64)));
+        let mut reversed = row(1.0, 64);
+        reversed[63] = Ray::infinite(Vec3::ZERO, -Vec3::from(reversed[63].dir)).unwrap();
+        assert!(!coherent(&reversed));
+        let scattered = rays((0..64).map(|i| {
+            let a = i as f32 * 2.4;
+            Vec3::new(a.cos(), (i as f32 * 0.7).sin(), a.sin())
+        }));
+        assert!(!coherent(&scattered));
     }
 }

@@ -86,6 +86,21 @@ impl<const C: usize> Index for WideBvh<C> {
 
     walk::tree_queries!();
 
+    /// Chunks of camera-like rays ray by ray, other chunks two walks at a time
+    /// ([`walk::coherent`], [`walk::closest_hits_interleaved`]).
+    fn closest_hits_chunk<G: Geometry, S: super::Stats>(
+        &self,
+        geom: &G,
+        rays: &[crate::geometry::Ray],
+        out: &mut [Option<crate::geometry::Hit>],
+        stats: &mut [S],
+    ) {
+        match walk::coherent(rays) {
+            true => super::batch::each_closest(self, geom, rays, out, stats),
+            false => walk::closest_hits_interleaved(&self.tree(), geom, rays, out, stats),
+        }
+    }
+
     fn info(&self) -> IndexInfo {
         let memory_bytes = size_of::<Aabb>()
             + self.nodes.len() * size_of::<WideNode<C>>()
