@@ -169,9 +169,9 @@ fn triangle_scenes_get_simd_leaves_and_mixed_scenes_keep_id_leaves() {
     );
 }
 
-/// `bvh8`'s chunk tracing (camera-like chunks ray by ray, scattered ones two walks at a time)
-/// returns, ray for ray, what its single-ray query returns, hit and counters alike: the
-/// interleaved walks are the single-ray walks.
+/// `bvh8`'s chunk tracing (camera-like chunks in lockstep pairs, scattered ones two refilled
+/// walks at a time) returns, ray for ray, what its single-ray query returns, hit and counters
+/// alike: the paired and interleaved walks are the single-ray walks.
 #[test]
 fn chunks_trace_like_single_rays() {
     use accelbench::geometry::triangle::Exact;
@@ -180,11 +180,29 @@ fn chunks_trace_like_single_rays() {
     let scene = generators::generate("icosphere", 20_000, 5).unwrap();
     let b = scene.ray_set_bounds();
     let mut rays = primary_rays(&b, 40, 40).unwrap();
+    // Camera rays again, every seventh with no x component (the safe slab variant), so some
+    // lockstep pairs hold one such ray.
+    let camera: Vec<Ray> = rays
+        .iter()
+        .enumerate()
+        .map(|(i, r)| match i % 7 {
+            0 => Ray::new(
+                r.origin.into(),
+                glam::Vec3::new(0.0, r.dir.y, r.dir.z),
+                r.t_min,
+                r.t_max,
+            )
+            .unwrap(),
+            _ => *r,
+        })
+        .collect();
+    rays.extend(camera);
     rays.extend(incoherent_rays(&b, 3000, 7));
     let geom = Triangles::<Exact>::new(scene.triangles.into());
     let index = Bvh8::build(&geom, &BvhParams::default()).unwrap();
     let mut hits = 0;
-    for chunk in rays.chunks(64) {
+    // 63 rays a chunk: camera chunks of an odd length, whose last ray has no pair.
+    for chunk in rays.chunks(63) {
         let mut got = vec![None; chunk.len()];
         let mut counted = vec![Counters::default(); chunk.len()];
         index.closest_hits_chunk(&geom, chunk, &mut got, &mut counted);

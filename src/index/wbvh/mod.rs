@@ -86,8 +86,9 @@ impl<const C: usize> Index for WideBvh<C> {
 
     walk::tree_queries!();
 
-    /// Chunks of camera-like rays ray by ray, other chunks two walks at a time
-    /// ([`walk::coherent`], [`walk::closest_hits_interleaved`]).
+    /// Two walks at a time: chunks of camera-like rays in lockstep pairs of neighbours, other
+    /// chunks with each walk refilled as it finishes ([`walk::coherent`],
+    /// [`walk::closest_hits_lockstep`], [`walk::closest_hits_interleaved`]).
     fn closest_hits_chunk<G: Geometry, S: super::Stats>(
         &self,
         geom: &G,
@@ -96,7 +97,7 @@ impl<const C: usize> Index for WideBvh<C> {
         stats: &mut [S],
     ) {
         match walk::coherent(rays) {
-            true => super::batch::each_closest(self, geom, rays, out, stats),
+            true => walk::closest_hits_lockstep(&self.tree(), geom, rays, out, stats),
             false => walk::closest_hits_interleaved(&self.tree(), geom, rays, out, stats),
         }
     }
