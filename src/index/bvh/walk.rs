@@ -419,7 +419,7 @@ fn any<const SAFE: bool, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
+    use glam::{Vec3, Vec3A};
 
     fn rays(dirs: impl IntoIterator<Item = Vec3>) -> Vec<Ray> {
         dirs.into_iter()
@@ -450,5 +450,18 @@ mod tests {
             Vec3::new(a.cos(), (i as f32 * 0.7).sin(), a.sin())
         }));
         assert!(!coherent(&scattered));
+    }
+
+    /// The protocol camera's rays, 160 to a row, in chunks of 63 (as `tests/wbvh.rs` traces
+    /// them): those within one row pass the camera check (about 3 in 5), those that span two
+    /// rows do not.
+    #[test]
+    fn protocol_camera_chunks_are_coherent() {
+        let b = Aabb::new(Vec3A::splat(-1.0), Vec3A::splat(1.0));
+        let rays = crate::rays::primary_rays(&b, 160, 160).unwrap();
+        let chunks = rays.len().div_ceil(63);
+        let camera = rays.chunks(63).filter(|c| coherent(c)).count();
+        assert!(camera * 2 > chunks, "{camera} of {chunks}");
+        assert!(camera < chunks, "{camera} of {chunks}");
     }
 }
