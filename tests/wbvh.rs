@@ -169,7 +169,7 @@ fn triangle_scenes_get_simd_leaves_and_mixed_scenes_keep_id_leaves() {
     );
 }
 
-/// `bvh8`'s chunk tracing (camera-like chunks in lockstep pairs, scattered ones two refilled
+/// `bvh8`'s chunk tracing (camera-like chunks in lockstep pairs, scattered ones three refilled
 /// walks at a time) returns, ray for ray, what its single-ray query returns, hit and counters
 /// alike: the paired and interleaved walks are the single-ray walks.
 #[test]
@@ -200,7 +200,21 @@ fn chunks_trace_like_single_rays() {
         })
         .collect();
     rays.extend(camera);
-    rays.extend(incoherent_rays(&b, 3000, 7));
+    // Scattered rays, every eleventh with no y component (answered at once by the single-ray
+    // query while the other walks wait).
+    let scattered = incoherent_rays(&b, 3000, 7).into_iter().enumerate();
+    rays.extend(scattered.map(|(i, r)| {
+        match i % 11 {
+            0 => Ray::new(
+                r.origin.into(),
+                glam::Vec3::new(r.dir.x, 0.0, r.dir.z),
+                r.t_min,
+                r.t_max,
+            )
+            .unwrap(),
+            _ => r,
+        }
+    }));
     let geom = Triangles::<Exact>::new(scene.triangles.into());
     let index = Bvh8::build(&geom, &BvhParams::default()).unwrap();
     let mut hits = 0;

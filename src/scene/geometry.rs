@@ -201,7 +201,7 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
     /// undecided lanes take the scalar kernel and [`accept`], as in [`Geometry::intersect`].
     /// A block the lane form decided to be all misses (most blocks a ray tests) skips the
     /// clamp.
-    #[inline]
+    #[inline(always)]
     fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
         let lanes = K::intersect_lanes(&block.tris, ray);
         if lanes.hit | lanes.scalar == 0 {

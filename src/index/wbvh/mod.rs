@@ -86,8 +86,8 @@ impl<const C: usize> Index for WideBvh<C> {
 
     walk::tree_queries!();
 
-    /// Two walks at a time: chunks of camera-like rays in lockstep pairs of neighbours, other
-    /// chunks with each walk refilled as it finishes ([`walk::coherent`],
+    /// Several walks at a time: chunks of camera-like rays in lockstep pairs of neighbours,
+    /// other chunks three walks at a time, each refilled as it finishes ([`walk::coherent`],
     /// [`walk::closest_hits_lockstep`], [`walk::closest_hits_interleaved`]).
     fn closest_hits_chunk<G: Geometry, S: super::Stats>(
         &self,
