@@ -183,38 +183,25 @@ fn chunks_trace_like_single_rays() {
     // check (the unit test `walk::tests::protocol_camera_chunks_are_coherent`), so they go in
     // lockstep pairs.
     let mut rays = primary_rays(&b, 160, 160).unwrap();
-    // Camera rays again, every seventh with no x component (the safe slab variant), so some
-    // lockstep pairs hold one such ray.
-    let camera: Vec<Ray> = rays[..3200]
-        .iter()
-        .enumerate()
-        .map(|(i, r)| match i % 7 {
-            0 => Ray::new(
-                r.origin.into(),
-                glam::Vec3::new(0.0, r.dir.y, r.dir.z),
-                r.t_min,
-                r.t_max,
-            )
-            .unwrap(),
-            _ => *r,
-        })
-        .collect();
+    // Copies of `rays`, every `n`th with its direction's `axis` component set to 0 (the safe
+    // slab variant).
+    let zero_axis = |rays: &[Ray], n: usize, axis: usize| -> Vec<Ray> {
+        let zero = |r: &Ray| {
+            let mut dir = glam::Vec3::from(r.dir);
+            dir[axis] = 0.0;
+            Ray::new(r.origin.into(), dir, r.t_min, r.t_max).unwrap()
+        };
+        let rays = rays.iter().enumerate();
+        rays.map(|(i, r)| if i % n == 0 { zero(r) } else { *r })
+            .collect()
+    };
+    // Camera rays again, every seventh with no x component, so some lockstep pairs hold one
+    // such ray.
+    let camera = zero_axis(&rays[..3200], 7, 0);
     rays.extend(camera);
     // Scattered rays, every eleventh with no y component (answered at once by the single-ray
     // query while the other walks wait).
-    let scattered = incoherent_rays(&b, 3000, 7).into_iter().enumerate();
-    rays.extend(scattered.map(|(i, r)| {
-        match i % 11 {
-            0 => Ray::new(
-                r.origin.into(),
-                glam::Vec3::new(r.dir.x, 0.0, r.dir.z),
-                r.t_min,
-                r.t_max,
-            )
-            .unwrap(),
-            _ => r,
-        }
-    }));
+    rays.extend(zero_axis(&incoherent_rays(&b, 3000, 7), 11, 1));
     let geom = Triangles::<Exact>::new(scene.triangles.into());
     let index = Bvh8::build(&geom, &BvhParams::default()).unwrap();
     let mut hits = 0;
