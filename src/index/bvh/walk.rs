@@ -491,7 +491,7 @@ mod tests {
         assert!(!coherent(&scattered));
     }
 
-    /// The protocol camera's rays, 160 to a row, in chunks of 63 (as `tests/wbvh.rs` traces
+    /// The protocol camera's rays, 160 to a row, in chunks of 63 (as `tests/it/wbvh.rs` traces
     /// them): those within one row pass the camera check (about 3 in 5), those that span two
     /// rows do not.
     #[test]

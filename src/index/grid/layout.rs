@@ -26,7 +26,7 @@ pub struct Layout {
     /// the ray origin), which the shared overlap pad (relative to the cell's own coordinates) does
     /// not cover for cells near the coordinate origin. With `MARGIN_REL` of the diagonal that is
     /// an estimate (a few ulps of the ray's distance) good for ray origins up to some tens of
-    /// diagonals from the grid; `tests/grid.rs` checks rays from 60 diagonals away.
+    /// diagonals from the grid; `tests/it/grid.rs` checks rays from 60 diagonals away.
     pub margin: f32,
 }
 

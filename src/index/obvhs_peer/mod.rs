@@ -6,7 +6,7 @@
 //! obvhs culls a node when its entry is not below the ray's `tmax` (BVH2: `entry < tmax`),
 //! which would drop ties at equal `t`. So the callback keeps the best hit itself and hands
 //! obvhs a `tmax` slightly above the best `t` (`culling_bound`). That is not enough for
-//! bit-identical hits, and `tests/obvhs_peer.rs` counts and classifies what remains:
+//! bit-identical hits, and `tests/it/obvhs_peer.rs` counts and classifies what remains:
 //! - obvhs's slab test has no `1 + 2 gamma(3)` widening of the exit distance, so a ray through
 //!   a box corner or edge (rays aimed at shared vertices) can see exit < entry and lose the box:
 //!   a tie goes to a higher id, or a grazing hit is lost;

@@ -2,7 +2,7 @@
 //! up to 8 and nodes of every width from 2 to 8 present, with spatial splits (primitives in
 //! several leaves), and on small corner scenes, they return brute force's hits bit for bit.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::index::{Bvh4, Bvh8, BvhParams, Index};

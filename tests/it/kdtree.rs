@@ -1,8 +1,8 @@
 //! The SAH kd-tree returns brute force's hits bit for bit: on the agreement scenes, on rays
 //! lying in its split planes and through their crossings, and on degenerate input; it tests
 //! each primitive at most once per ray; bad parameters are typed errors.
-mod common;
-mod partition_kit;
+use crate::common;
+use crate::partition_kit;
 
 use accelbench::index::kdtree::KdNode;
 use accelbench::index::{Index, KdTree};

@@ -1,5 +1,5 @@
 //! Shared test scenes and ray families for the cross-index agreement tests: the same test body
-//! runs against every index (`assert_agrees("grid", ...)`, and `tests/agreement.rs` over
+//! runs against every index (`assert_agrees("grid", ...)`, and `tests/it/agreement.rs` over
 //! the whole registry).
 #![allow(dead_code)]
 

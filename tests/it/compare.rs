@@ -5,7 +5,7 @@
 use accelbench::harness::suite::ResultRow;
 use std::path::Path;
 
-mod common;
+use crate::common;
 use common::cli::accelbench;
 
 fn read_rows(dir: &Path) -> Vec<ResultRow> {

@@ -11,7 +11,7 @@ use accelbench::render::{
 use accelbench::scene::{AreaLight, Material, Scene, generators, load_scene};
 use glam::Vec3;
 use std::path::Path;
-mod common;
+use crate::common;
 
 fn build(name: &str, scene: &Scene) -> Box<dyn TraceIndex> {
     build_index(

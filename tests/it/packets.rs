@@ -2,7 +2,7 @@
 //! one shared traversal and an active mask, the other indices ray by ray; every ray gets
 //! brute force's closest hit bit for bit and the same any-hit answer.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;

@@ -3,7 +3,7 @@
 //! starting inside and outside), at most one test per primitive per ray, degenerate scenes, and
 //! bad parameters.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};

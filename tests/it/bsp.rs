@@ -2,8 +2,8 @@
 //! and near its split planes (axis planes exactly, general planes to rounding) and through
 //! their crossings, and on degenerate input; it tests each primitive at most once per ray; bad
 //! parameters are typed errors.
-mod common;
-mod partition_kit;
+use crate::common;
+use crate::partition_kit;
 
 use accelbench::geometry::Ray;
 use accelbench::index::bsp::BspNode;

@@ -1,7 +1,7 @@
 //! The suite: verification catches an index that drops a primitive (and names the ray), the
 //! report's CSV has the promised columns and parses, and `accelbench run --quick` runs end to end.
 
-mod common;
+use crate::common;
 
 use accelbench::camera::Camera;
 use accelbench::geometry::triangle::Watertight;

@@ -2,7 +2,7 @@
 //! of the rays' 32-byte records, as `accelbench rays` writes them), different for another seed,
 //! and every index returns brute force's hits on them bit for bit.
 
-mod common;
+use crate::common;
 
 use accelbench::camera::ModelKind;
 use accelbench::geometry::{Aabb, TriangleKernelKind};

@@ -4,7 +4,7 @@
 //! where it holds (protocol rays on the bunny); elsewhere the mismatches are counted, printed
 //! (`--nocapture`), and each one must fall in a documented class.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;
@@ -12,7 +12,7 @@ use accelbench::index::{TraceIndex, peer_names};
 use accelbench::scene::Scene;
 use common::{agreement_rays, agreement_scenes};
 
-/// The obvhs peers (the other peers are tested in `tests/peers.rs`).
+/// The obvhs peers (the other peers are tested in `tests/it/peers.rs`).
 fn obvhs_peers() -> Vec<&'static str> {
     peer_names()
         .into_iter()

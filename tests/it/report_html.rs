@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::process::Command;
 
-mod common;
+use crate::common;
 
 fn quick_run(out: &Path) {
     let stdout = common::cli::accelbench_ok(&[

@@ -2,7 +2,7 @@
 //! kind (issue 10), with protocol rays, rays aimed exactly at shape vertices, edges, corners,
 //! rims and apexes, and rays through the edges polygons share.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, Shape};
 use accelbench::index::{index_names, is_peer};
@@ -66,7 +66,7 @@ fn every_index_agrees_with_brute_force_on_all_primitive_kinds() {
         assert_eq!(kinds.len(), 6, "{kinds:?}");
         let rays = shape_rays(scene, 1500);
         // Our indices must agree; the obvhs peers (index::is_peer) lose some hits by design of
-        // their own box tests and are checked in tests/obvhs_peer.rs.
+        // their own box tests and are checked in tests/it/obvhs_peer.rs.
         for name in index_names().into_iter().filter(|n| !is_peer(n)) {
             common::assert_agrees(name, scene, &rays);
         }

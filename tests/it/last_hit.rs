@@ -2,7 +2,7 @@
 //! image order with the previous ray's hit tested first, returns brute force's closest hits
 //! bit for bit (ties and the kernel's clamp included) and the same any-hit answers.
 
-mod common;
+use crate::common;
 
 use accelbench::index::TraceMode;
 

@@ -4,7 +4,7 @@ use accelbench::geometry::Aabb;
 use accelbench::rays::{incoherent_rays, primary_rays};
 use glam::Vec3A;
 
-mod common;
+use crate::common;
 
 #[test]
 fn bunny_ray_sets_match_protocol_checksums() {

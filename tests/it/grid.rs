@@ -2,7 +2,7 @@
 //! boundaries, flat and one-primitive scenes, at most one test per primitive per ray, bad
 //! parameters, and a small `sweep grid` run.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::index::{

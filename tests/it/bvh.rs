@@ -4,7 +4,7 @@
 //! kernel on the agreement scenes, shapes, the bunny and the stress cases, in every trace mode;
 //! they happen on slivers, within the reference budget, and the build is deterministic.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;

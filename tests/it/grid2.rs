@@ -3,7 +3,7 @@
 //! a closed mesh far from the origin, at most one test per primitive per ray, and bad
 //! parameters.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::index::{BuildError, Grid2, IndexSpec, build_index, build_index_on, parse_params};

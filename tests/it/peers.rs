@@ -5,7 +5,7 @@
 //! a scene with spheres skips them with the reason.
 #![cfg(any(feature = "embree", feature = "tinybvh"))]
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
 use accelbench::harness::peer_check::{PeerCounts, Verdict, classify};
@@ -19,7 +19,7 @@ use accelbench::index::{
 use accelbench::scene::{Scene, SceneGeometry, Triangles, generators};
 use indicatif::ProgressBar;
 
-/// The peers of this build (obvhs excluded: `tests/obvhs_peer.rs`).
+/// The peers of this build (obvhs excluded: `tests/it/obvhs_peer.rs`).
 fn peers() -> Vec<&'static str> {
     peer_names()
         .into_iter()
@@ -97,7 +97,7 @@ fn peers_trace_generated_triangle_scenes_close_to_brute_force() {
 }
 
 /// The bunny's full protocol sets (1024 x 1024 primary, 1,048,576 incoherent rays). The
-/// reference is `bvh`, which returns brute force's hits bit for bit (`tests/agreement.rs`), so
+/// reference is `bvh`, which returns brute force's hits bit for bit (`tests/it/agreement.rs`), so
 /// every ray can be checked.
 #[test]
 fn embree_is_never_wrong_on_the_bunny_protocol_sets() {

@@ -2,12 +2,12 @@
 //! brute force's closest hit (same primitive, bit-identical `t`, ties to the lowest id) and
 //! the matching any-hit answer, on the generated agreement scenes with every triangle kernel
 //! and on the bunny's protocol rays. Peers ([`is_peer`]) go through the same body, but their
-//! mismatches are printed (`--nocapture`), not failed; `tests/obvhs_peer.rs` classifies them.
+//! mismatches are printed (`--nocapture`), not failed; `tests/it/obvhs_peer.rs` classifies them.
 //! A new index is covered by its registry line alone. The stress cases run over the registry
-//! in `tests/stress.rs`; index-specific parameters and structure invariants stay in the index's
+//! in `tests/it/stress.rs`; index-specific parameters and structure invariants stay in the index's
 //! own test file.
 
-mod common;
+use crate::common;
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::verify::compare_indices;

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-mod common;
+use crate::common;
 use common::cli::{accelbench, accelbench_fails as fails_with, accelbench_ok};
 
 fn file(dir: &Path, name: &str, bytes: &[u8]) -> String {

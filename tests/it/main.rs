@@ -1,0 +1,32 @@
+//! The integration tests, gathered into one binary so that the crate is linked once (thirty
+//! binaries each linking the whole crate made the test build several times slower). Each module
+//! is one former `tests/NAME.rs`; run one with `cargo test --release --test it NAME::`.
+
+mod common;
+mod partition_kit;
+
+mod accuracy;
+mod agreement;
+mod bsp;
+mod bvh;
+mod cameras;
+mod cli;
+mod compare;
+mod grid;
+mod grid2;
+mod kdtree;
+mod last_hit;
+mod leak;
+mod obvhs_peer;
+mod octree;
+mod packets;
+mod peers;
+mod proptest_indices;
+mod protocol;
+mod render;
+mod report_html;
+mod shapes;
+mod shard;
+mod stress;
+mod suite;
+mod wbvh;
