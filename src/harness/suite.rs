@@ -10,7 +10,12 @@
 //! - every index with the first of our indices in the list (peers, [`is_peer`], excluded), on every
 //!   ray (so all indices agree pairwise);
 //! - every timed pass with the same index's counting pass.
+//!
+//! A contender's failure is contained: a build error, or a panic while building or tracing it
+//! ([`super::contain`]), becomes a note on that contender (`failed: panic at ...`), counted in
+//! [`SuiteResult::failure_total`] when it is ours, and the run goes on without it.
 
+use super::contain::contained;
 pub use super::shard::Shard;
 use super::suite_config::Pools;
 pub use super::suite_config::SuiteConfig;
@@ -31,7 +36,7 @@ pub type IndexBuilder<'a> =
 pub type SceneHook<'a> = &'a mut (dyn FnMut(&Scene, &[&dyn TraceIndex]) + Send);
 
 /// Runs the suite on `scenes` with the registry's indices. Fails only when the run cannot start
-/// (thread pools); index build errors and mismatches are reported in the result.
+/// (thread pools); index failures and mismatches are reported in the result.
 pub fn run_suite(
     scenes: &[Scene],
     cfg: &SuiteConfig,
@@ -73,7 +78,9 @@ pub fn run_suite_with(
         }
         let built = run_scene(scene, &specs, cfg, &pools, progress, build, &mut res);
         let refs: Vec<&dyn TraceIndex> = built.iter().map(|b| b.as_ref()).collect();
-        pools.all().install(|| after_scene(scene, &refs));
+        if let Err(p) = contained(|| pools.all().install(|| after_scene(scene, &refs))) {
+            res.note(scene, "pictures".into(), format!("failed: {p}"));
+        }
     }
     progress.finish_and_clear();
     Ok(res)
@@ -93,20 +100,37 @@ fn run_scene(
     let mut built: Vec<Box<dyn TraceIndex>> = Vec::new();
     for spec in specs {
         progress.set_message(format!("{}: building {spec}", scene.name));
-        match build(spec, &geom) {
-            Ok(i) => built.push(i),
-            Err(BuildError::Unsupported { reason, .. }) => {
-                res.note(scene, format!("index {spec}"), format!("skipped: {reason}"));
-                progress.inc(cfg.sets.len() as u64);
+        let what = format!("index {spec}");
+        match contained(|| build(spec, &geom)) {
+            Ok(Ok(i)) => {
+                built.push(i);
+                continue;
             }
-            Err(e) => {
-                res.note(scene, format!("index {spec}"), format!("build failed: {e}"));
-                progress.inc(cfg.sets.len() as u64);
+            Ok(Err(BuildError::Unsupported { reason, .. })) => {
+                res.note(scene, what, format!("skipped: {reason}"))
             }
+            Ok(Err(e)) => res.fail(scene, &spec.name, what, format!("build failed: {e}")),
+            Err(p) => res.fail(scene, &spec.name, what, format!("failed: {p} (building)")),
         }
+        progress.inc(cfg.sets.len() as u64);
     }
-    let brute = build_index(&IndexSpec::named("brute"), &geom, cfg.kernel)
-        .expect("brute force builds on every valid scene");
+    let brute = match contained(|| build_index(&IndexSpec::named("brute"), &geom, cfg.kernel)) {
+        Ok(Ok(b)) => b,
+        Ok(Err(e)) => {
+            res.fail(
+                scene,
+                "brute",
+                "reference brute".into(),
+                format!("build failed: {e}"),
+            );
+            return built;
+        }
+        Err(p) => {
+            let reason = format!("failed: {p} (building)");
+            res.fail(scene, "brute", "reference brute".into(), reason);
+            return built;
+        }
+    };
 
     // Primary rays and hits feed the secondary sets; hits come from the first built index
     // (every index returns the same hits; verification checks that separately).
@@ -119,15 +143,10 @@ fn run_scene(
     };
     let needs_primary_hits = cfg.sets.iter().any(|s| s.is_secondary());
     let primary_hits = if needs_primary_hits {
-        let tracer: &dyn TraceIndex = built
-            .iter()
-            .find(|b| b.name() != "brute" && !is_peer(b.name()))
-            .map_or(brute.as_ref(), |b| b.as_ref());
-        let mut h = vec![None; primary.len()];
-        pools
-            .all()
-            .install(|| tracer.closest_hits(&primary, &mut h));
-        h
+        match primary_hits(scene, &primary, &mut built, brute.as_ref(), pools, res) {
+            Some(h) => h,
+            None => return built,
+        }
     } else {
         Vec::new()
     };
@@ -163,10 +182,69 @@ fn run_scene(
             scene.name,
             set.name()
         ));
-        let run = SetRun::new(scene, set, &rays, brute.as_ref(), cfg, pools, res);
-        run_set(run, &built, cfg, pools, progress, res);
+        let failed = contained(|| {
+            let run = SetRun::new(scene, set, &rays, brute.as_ref(), cfg, pools, res);
+            let failed = run_set(run, &built, cfg, pools, progress, res);
+            let gone = |b: &dyn TraceIndex| failed.iter().any(|&f| std::ptr::addr_eq(f, b));
+            built
+                .iter()
+                .map(|b| gone(b.as_ref()))
+                .collect::<Vec<bool>>()
+        });
+        match failed {
+            // The contenders that panicked on this set are left out of the later ones.
+            Ok(gone) => {
+                let mut gone = gone.into_iter();
+                built.retain(|_| !gone.next().unwrap_or(false));
+            }
+            Err(p) => {
+                let what = format!("ray set {}", set.name());
+                res.fail(
+                    scene,
+                    "brute",
+                    what,
+                    format!("failed: {p} (brute force's reference or the verification)"),
+                );
+            }
+        }
     }
     built
+}
+
+/// The primary hits the secondary sets start from, traced by the first of our indices (every
+/// index returns the same hits; verification checks that separately), or by brute force when
+/// none was built. An index that panics is noted, dropped from `built`, and the next one traces;
+/// `None` when brute force itself panics (noted).
+fn primary_hits(
+    scene: &Scene,
+    primary: &[crate::geometry::Ray],
+    built: &mut Vec<Box<dyn TraceIndex>>,
+    brute: &dyn TraceIndex,
+    pools: &Pools,
+    res: &mut SuiteResult,
+) -> Option<Vec<Option<crate::geometry::Hit>>> {
+    loop {
+        let pos = (built.iter()).position(|b| b.name() != "brute" && !is_peer(b.name()));
+        let tracer = pos.map_or(brute, |p| built[p].as_ref());
+        let traced = contained(|| {
+            let mut h = vec![None; primary.len()];
+            pools.all().install(|| tracer.closest_hits(primary, &mut h));
+            h
+        });
+        match traced {
+            Ok(h) => return Some(h),
+            Err(p) => {
+                let what = format!("index {} on primary", tracer.name());
+                res.fail(
+                    scene,
+                    tracer.name(),
+                    what,
+                    format!("failed: {p} (tracing primary)"),
+                );
+                built.remove(pos?);
+            }
+        }
+    }
 }
 
 /// Builds every index of `specs` on a tiny scene, so bad names and parameters fail before a long

@@ -67,6 +67,14 @@ pub struct Note {
     pub reason: String,
 }
 
+impl Note {
+    /// Whether the note is a contender's failure (a build error, or a panic in a build or a
+    /// trace) rather than a skip or a coverage note.
+    pub fn is_failure(&self) -> bool {
+        self.reason.starts_with("build failed") || self.reason.starts_with("failed:")
+    }
+}
+
 /// Everything a run produced.
 #[derive(Debug, Default)]
 pub struct SuiteResult {
@@ -78,6 +86,9 @@ pub struct SuiteResult {
     pub mismatch_total: usize,
     /// Mismatching results of peer indices ([`crate::index::is_peer`]): reported, not a failure.
     pub peer_mismatch_total: usize,
+    /// Failures of our indices (a build error, or a panic in a build or a trace; each is also
+    /// a note): any fails the run. Peers' failures are only notes.
+    pub failure_total: usize,
     pub notes: Vec<Note>,
     /// Per scene and set: how brute-force verification covered the rays.
     pub verification: Vec<Note>,
@@ -92,5 +103,14 @@ impl SuiteResult {
             what,
             reason,
         });
+    }
+
+    /// Notes that contender `index` failed on `scene` (`what`: the index, or the index and ray
+    /// set), counting it in [`SuiteResult::failure_total`] unless it is a peer.
+    pub(super) fn fail(&mut self, scene: &Scene, index: &str, what: String, reason: String) {
+        if !crate::index::is_peer(index) {
+            self.failure_total += 1;
+        }
+        self.note(scene, what, reason);
     }
 }

@@ -2,6 +2,7 @@
 //! (and trace mode) a counting pass and the verification of its hits, then the timed passes of
 //! all of them, interleaved ([`timed_passes`]), and the result rows.
 
+use super::contain::contained;
 use super::peer_check::{PeerCounts, classify};
 use super::suite_config::{Pools, SuiteConfig};
 use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
@@ -170,7 +171,8 @@ fn brute_over_budget(
 
 /// Runs every built index on one ray set and appends its rows to `res`. First each index is
 /// counted and verified, traced ray by ray and then in every extra mode of `cfg.modes` that
-/// applies to the set; then all of them are timed together ([`timed_passes`]).
+/// applies to the set; then all of them are timed together ([`timed_passes`]). An index that
+/// panics in a counting or timed pass gets a failure note instead of rows, and is returned.
 pub(super) fn run_set<'a>(
     mut run: SetRun<'a>,
     built: &'a [Box<dyn TraceIndex>],
@@ -178,8 +180,9 @@ pub(super) fn run_set<'a>(
     pools: &Pools,
     progress: &ProgressBar,
     res: &mut SuiteResult,
-) {
+) -> Vec<&'a dyn TraceIndex> {
     let mut entries = Vec::new();
+    let mut failed = Vec::new();
     for index in built {
         let index = index.as_ref();
         progress.set_message(format!(
@@ -192,18 +195,32 @@ pub(super) fn run_set<'a>(
             progress.inc(1);
             continue;
         }
-        let single = count_mode(&mut run, index, TraceMode::Single, None, pools, res);
         let (set, first) = (run.set, entries.len());
-        for &mode in cfg.modes.iter().filter(|m| applies(**m, set)) {
-            let entry = count_mode(&mut run, index, mode, Some(&single.hits), pools, res);
-            entries.push(entry);
+        // A panic can only come from the index's trace, before that mode's verification: what
+        // the earlier modes recorded stays (their hits were verified).
+        let counted = contained(|| {
+            let single = count_mode(&mut run, index, TraceMode::Single, None, pools, res);
+            for &mode in cfg.modes.iter().filter(|m| applies(**m, set)) {
+                let entry = count_mode(&mut run, index, mode, Some(&single.hits), pools, res);
+                entries.push(entry);
+            }
+            entries.insert(first, single);
+        });
+        if let Err(p) = counted {
+            entries.truncate(first);
+            note_failed(&run, index, &format!("{p} (counting pass)"), res);
+            failed.push(index);
         }
-        entries.insert(first, single);
         progress.inc(1);
     }
     progress.set_message(format!("{}: {} timing", run.scene.name, run.set.name()));
     let timings = timed_passes(&run, &mut entries, cfg, pools, res);
     for (entry, timings) in entries.into_iter().zip(timings) {
+        if let Some(p) = entry.failed {
+            note_failed(&run, entry.index, &format!("{p} (timed pass)"), res);
+            failed.push(entry.index);
+            continue;
+        }
         let counts = SetCounts {
             total: entry.total,
             hits: entry.hits.iter().flatten().count(),
@@ -221,6 +238,13 @@ pub(super) fn run_set<'a>(
             res.rows.push(row);
         }
     }
+    failed
+}
+
+/// Notes that `index` panicked on this set (`p`: [`contained`]'s message and the pass).
+fn note_failed(run: &SetRun, index: &dyn TraceIndex, p: &str, res: &mut SuiteResult) {
+    let what = format!("index {} on {}", index.name(), run.set.name());
+    res.fail(run.scene, index.name(), what, format!("failed: {p}"));
 }
 
 /// Whether the suite traces `set` in `mode`: packets only on the coherent sets.
@@ -241,6 +265,8 @@ struct Entry<'a> {
     /// Edge functions the exact kernel's fallback decided during the counting pass.
     exact_fallbacks: u64,
     tally: Tally<'a>,
+    /// Set when a timed pass panicked: the entry is timed no further and gets no rows.
+    failed: Option<String>,
 }
 
 /// The counting pass of one index in one mode and its verification (ray by ray: against brute
@@ -278,6 +304,7 @@ fn count_mode<'a>(
         total: counters.iter().copied().sum(),
         exact_fallbacks,
         tally,
+        failed: None,
     }
 }
 
@@ -306,8 +333,19 @@ fn timed_passes(
         let mut samples = vec![Vec::with_capacity(repeats); entries.len()];
         for pass in 1..=repeats {
             for (entry, samples) in entries.iter_mut().zip(&mut samples) {
-                samples
-                    .push(pool.install(|| time_pass(entry.index, entry.mode, run.rays, &mut out)));
+                if entry.failed.is_some() {
+                    continue;
+                }
+                let timed = contained(|| {
+                    pool.install(|| time_pass(entry.index, entry.mode, run.rays, &mut out))
+                });
+                match timed {
+                    Ok(t) => samples.push(t),
+                    Err(p) => {
+                        entry.failed = Some(p);
+                        continue;
+                    }
+                }
                 if pass == repeats {
                     let timed = out.hits();
                     let m = compare_closest(run.rays, &entry.hits, &timed);
@@ -316,7 +354,8 @@ fn timed_passes(
             }
         }
         for (timing, samples) in timings.iter_mut().zip(samples) {
-            timing.push((*threads, Some(Timing::of(samples))));
+            let timed = (!samples.is_empty()).then(|| Timing::of(samples));
+            timing.push((*threads, timed));
         }
     }
     timings

@@ -22,6 +22,10 @@ pub struct RunNotes {
     pub mismatch_total: usize,
     /// Mismatching results of peer indices: reported, not a failure.
     pub peer_mismatch_total: usize,
+    /// Failures of our indices (build errors, panics; each is also a note): any fails the run.
+    /// Absent from reports written before it was added.
+    #[serde(default)]
+    pub failure_total: usize,
     /// What the run skipped or could not build, and why.
     pub notes: Vec<Note>,
     /// Per scene and ray set: how brute-force verification covered the rays.
@@ -35,6 +39,7 @@ impl RunNotes {
         RunNotes {
             mismatch_total: res.mismatch_total,
             peer_mismatch_total: res.peer_mismatch_total,
+            failure_total: res.failure_total,
             notes: res.notes.clone(),
             verification: res.verification.clone(),
             pictures,
@@ -46,6 +51,7 @@ impl RunNotes {
     pub fn absorb(&mut self, other: RunNotes) {
         self.mismatch_total += other.mismatch_total;
         self.peer_mismatch_total += other.peer_mismatch_total;
+        self.failure_total += other.failure_total;
         self.notes.extend(other.notes);
         self.verification.extend(other.verification);
         for p in other.pictures {

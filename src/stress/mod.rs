@@ -8,6 +8,7 @@ pub mod report;
 pub mod self_intersection;
 
 use crate::geometry::{Hit, TriangleKernelKind};
+use crate::harness::contain::panic_message;
 use crate::harness::verify::{Mismatch, compare_with_expected};
 use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, index_names};
 use crate::scene::SceneGeometry;
@@ -139,14 +140,7 @@ fn run_one(
             m.first().map(|m| m.to_string()).unwrap_or_default(),
         ),
         Ok(Ok(Err(e))) => (0, format!("build failed: {e}")),
-        Ok(Err(panic)) => {
-            let msg = panic
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            (0, format!("panicked: {msg}"))
-        }
+        Ok(Err(panic)) => (0, format!("panicked: {}", panic_message(&*panic))),
         Err(_) => (
             0,
             format!(

@@ -23,6 +23,7 @@ mod packets;
 mod peers;
 mod proptest_indices;
 mod protocol;
+mod reliability;
 mod render;
 mod report_html;
 mod shapes;

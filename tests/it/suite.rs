@@ -15,7 +15,7 @@ use accelbench::scene::{Scene, Triangles, generators};
 use common::drop_one::{DROPPED, DropOne};
 use indicatif::ProgressBar;
 
-fn config(indices: &[&str]) -> SuiteConfig {
+pub(crate) fn config(indices: &[&str]) -> SuiteConfig {
     SuiteConfig {
         indices: indices.iter().map(|n| IndexSpec::named(n)).collect(),
         sets: vec![RaySet::Primary, RaySet::Shadow],
@@ -36,7 +36,7 @@ fn config(indices: &[&str]) -> SuiteConfig {
 }
 
 /// The suite on one scene with the indices `build` makes.
-fn run_built_by(scene: Scene, cfg: &SuiteConfig, build: IndexBuilder) -> SuiteResult {
+pub(crate) fn run_built_by(scene: Scene, cfg: &SuiteConfig, build: IndexBuilder) -> SuiteResult {
     run_suite_with(&[scene], cfg, &ProgressBar::hidden(), build, &mut |_, _| {}).unwrap()
 }
 
