@@ -1,8 +1,12 @@
 //! The last step of every primitive test ([`crate::scene::Geometry::intersect`]): the kernel's
 //! `t` clamped into the slab interval of the primitive's own box, then accepted when it lies in
-//! `[ray.t_min, t_max]`. [`accept`] does it for one primitive, [`accept_lanes`] for the four
+//! `[ray.t_min, t_max]` and finite. [`accept`] does it for one primitive, [`accept_lanes`] for the four
 //! triangles of a leaf block, lane for lane the same operations in the same order, so bit for
 //! bit the same `t` and decision.
+//!
+//! A hit has a finite `t`: a distance that overflows `f32` (a kernel's `t` of `+inf`, e.g. a
+//! ray with a denormal direction toward a plane it nearly parallels) is a miss, since `+inf`
+//! is the protocol's miss distance. Every index gets its hits through here, so all agree.
 //!
 //! The clamp is what keeps closest-hit culling exact (see the [`crate::scene::Geometry`]
 //! contract). Written as selects on ordered comparisons rather than `f32::max`/`min`, whose
@@ -28,13 +32,14 @@ fn clamp(t: f32, enter: f32, exit: f32) -> f32 {
 /// Clamps a kernel's `t` into the slab interval of `bounds` ([`Aabb::ray_interval`] over the
 /// whole line) and applies the `[ray.t_min, t_max]` acceptance (see the
 /// [`crate::scene::Geometry`] contract). `None` when the kernel missed, the conservative slab
-/// test rejects the box, or the clamped `t` lies outside the interval.
+/// test rejects the box, or the clamped `t` lies outside the interval or is `+inf` (a hit's
+/// `t` is finite: `t_min` is, and an overflowing distance is a miss).
 #[inline(always)]
 pub fn accept(t: Option<f32>, bounds: Aabb, ray: &Ray, t_max: f32) -> Option<f32> {
     let t = t?;
     let (enter, exit) = bounds.ray_interval(ray, f32::NEG_INFINITY, f32::INFINITY)?;
     let t = clamp(t, enter, exit);
-    (t >= ray.t_min && t <= t_max).then_some(t)
+    (t >= ray.t_min && t <= t_max && t < f32::INFINITY).then_some(t)
 }
 
 /// [`accept`] on the four lanes of a block: for each lane `i` set in `hit`, the kernel's
@@ -114,7 +119,10 @@ fn accept_lanes_in<const SAFE: bool>(
     let t = Vec4::from_array(t);
     let t = Vec4::select(enter.cmpgt(t), enter, t);
     let t = Vec4::select(exit.cmplt(t), exit, t);
-    let keep = enter.cmple(exit) & t.cmpge(Vec4::splat(ray.t_min)) & t.cmple(Vec4::splat(t_max));
+    let keep = enter.cmple(exit)
+        & t.cmpge(Vec4::splat(ray.t_min))
+        & t.cmple(Vec4::splat(t_max))
+        & t.cmplt(Vec4::splat(f32::INFINITY));
     (hit & keep.bitmask(), t.to_array())
 }
 
@@ -140,7 +148,18 @@ mod tests {
             -2.0, -1.0, -0.0, 0.0, 0.5, 1.0, 3.0, 1e-30, -7.25, 3e38, -3e38,
         ];
         let dirs = [-1.0, -0.0, 0.0, 0.25, 1.0, -3.0, 1e-20];
-        let ts = [-1.0, -0.0, 0.0, 0.5, 1.0, 2.0, 10.0, f32::NAN, 1e30];
+        let ts = [
+            -1.0,
+            -0.0,
+            0.0,
+            0.5,
+            1.0,
+            2.0,
+            10.0,
+            f32::NAN,
+            1e30,
+            f32::INFINITY,
+        ];
         let mut s = 7u64;
         let mut accepted = 0;
         for _ in 0..20_000 {

@@ -22,7 +22,9 @@ use std::sync::Arc;
 /// whose bounds the conservative slab test rejects is a miss. So `t` never lies before the entry
 /// of any box that contains the primitive's bounds, which makes "skip a box whose entry is
 /// greater than the best `t`" exact. The `t` does not depend on the `t_max` passed in (only its
-/// acceptance does): indices that shrink `t_max` get the bits brute force gets.
+/// acceptance does): indices that shrink `t_max` get the bits brute force gets. A hit's `t` is
+/// finite: a clamped `t` of `+inf` (a distance that overflows `f32`) is a miss, as `+inf` is the
+/// protocol's miss distance (`scene/accept.rs`).
 pub trait Geometry: Clone + Send + Sync + 'static {
     /// Number of primitives.
     fn len(&self) -> usize;
@@ -36,7 +38,7 @@ pub trait Geometry: Clone + Send + Sync + 'static {
     fn centroid(&self, prim: u32) -> Vec3A {
         self.bounds(prim).center()
     }
-    /// The shared kernel: `Some(t)` for a hit with `t` in `[ray.t_min, t_max]`.
+    /// The shared kernel: `Some(t)` for a hit with a finite `t` in `[ray.t_min, t_max]`.
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32>;
     /// Conservative overlap of the primitive with a closed box (never a false "no").
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool;

@@ -61,3 +61,45 @@ fn every_index_agrees_on_the_bunny_protocol_rays() {
     rays.extend(common::agreement_rays(&bunny, 2000));
     assert_every_index_agrees(&bunny, TriangleKernelKind::Watertight, &rays);
 }
+
+/// A hit has a finite `t`: a ray from (0.5, 0.5, -2) with a denormal direction toward the unit
+/// quad at z = 0 meets it at about 2e40, beyond `f32`'s range, so the kernel's `t` rounds to
+/// `+inf`, the protocol's miss distance. Brute force and every index report a miss there (and
+/// `any_hit` false), and still hit with the same quad along ordinary directions.
+#[test]
+fn a_distance_beyond_f32_is_a_miss_for_every_index() {
+    let p = |x: f32, y: f32| glam::Vec3A::new(x, y, 0.0);
+    let quad = vec![
+        accelbench::geometry::Triangle::new(p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)),
+        accelbench::geometry::Triangle::new(p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)),
+    ];
+    let scene = Scene::from_triangles("quad", quad);
+    let origin = glam::Vec3::new(0.5, 0.5, -2.0);
+    let far: Vec<Ray> = [
+        [1e-45, 1e-44, 1e-40],
+        [0.0, 0.0, 1e-40],
+        [1e-41, -1e-41, 1e-39],
+    ]
+    .into_iter()
+    .map(|d| Ray::infinite(origin, glam::Vec3::from_array(d)).unwrap())
+    .collect();
+    let near = [[0.0, 0.0, 1.0], [0.01, -0.02, 1.0], [0.0, 0.0, 1e-30]].map(|d| {
+        Ray::infinite(glam::Vec3::new(0.3, 0.6, -2.0), glam::Vec3::from_array(d)).unwrap()
+    });
+    for kernel in TriangleKernelKind::ALL {
+        let brute = build_index(&IndexSpec::named("brute"), &scene.geometry(), kernel).unwrap();
+        for ray in &far {
+            assert_eq!(brute.closest_hit(ray), None, "{kernel}: {ray:?}");
+            assert!(!brute.any_hit(ray), "{kernel}: {ray:?}");
+        }
+        for ray in &near {
+            let t = brute.closest_hit(ray).map(|h| h.t);
+            assert!(
+                t.is_some_and(f32::is_finite),
+                "{kernel}: {ray:?} gave {t:?}"
+            );
+        }
+        let rays: Vec<Ray> = far.iter().chain(&near).copied().collect();
+        assert_every_index_agrees(&scene, kernel, &rays);
+    }
+}
