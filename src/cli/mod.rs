@@ -1,5 +1,27 @@
 //! The `accelbench` command line: one file per subcommand, all logic in the library.
 
+/// `println!` for the subcommands, shadowing std's (which panics when stdout cannot be
+/// written): writes the line through [`out::write_stdout`] and returns its error from the
+/// enclosing function with `?`, so the command ends with `error: writing to standard output`.
+/// Defined before the subcommand modules, so it is the `println!` they see.
+macro_rules! println {
+    () => {
+        $crate::cli::out::write_stdout(format_args!("\n"))?
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::out::write_stdout(format_args!("{}\n", format_args!($($arg)*)))?
+    };
+}
+
+/// `print!` for the subcommands, as [`println!`] without the newline.
+macro_rules! print {
+    ($($arg:tt)*) => {
+        $crate::cli::out::write_stdout(format_args!($($arg)*))?
+    };
+}
+
+mod out;
+
 mod accuracy;
 mod compare;
 mod gen_obj;
@@ -16,6 +38,7 @@ mod trace;
 mod verify;
 
 use crate::geometry::TriangleKernelKind;
+use anyhow::Context;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -63,7 +86,10 @@ enum Command {
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
 pub fn main() -> ExitCode {
     end_quietly_on_closed_pipe();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_or_help(&e),
+    };
     let result = match cli.command {
         Command::Run(a) => run::run(a),
         Command::Verify(a) => verify::run(a),
@@ -79,10 +105,25 @@ pub fn main() -> ExitCode {
         Command::Compare(a) => compare::run(a),
         Command::Merge(a) => merge::run(a),
     };
+    let result = result.and_then(|()| out::flush_stdout());
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Prints clap's usage error (stderr, exit 2) or the help or version asked for (stdout, exit 0),
+/// failing with exit 1 when that cannot be written.
+fn usage_or_help(e: &clap::Error) -> ExitCode {
+    let printed =
+        (e.print().context("writing to standard output")).and_then(|()| out::flush_stdout());
+    match printed {
+        Ok(()) => ExitCode::from(e.exit_code().clamp(0, 255) as u8),
+        Err(err) => {
+            eprintln!("error: {err:#}");
             ExitCode::FAILURE
         }
     }

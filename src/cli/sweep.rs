@@ -288,7 +288,7 @@ fn sweep_and_write(
         )
     })??;
     let files = write_sweep(&p.out, common.rays.name(), &rows, plot)?;
-    summarize(&rows, default);
+    summarize(&rows, default)?;
     println!("wrote {}", files.csv.display());
     println!("wrote {}", files.rays_chart.display());
     println!("wrote {}", files.build_chart.display());
@@ -296,12 +296,12 @@ fn sweep_and_write(
 }
 
 /// Prints the fastest point and how the default (spec `default`) compares with it.
-fn summarize(rows: &[SweepRow], default: &str) {
+fn summarize(rows: &[SweepRow], default: &str) -> anyhow::Result<()> {
     let Some(best) = rows
         .iter()
         .max_by(|a, b| a.rays_per_s.total_cmp(&b.rays_per_s))
     else {
-        return;
+        return Ok(());
     };
     println!(
         "fastest:   {} (x = {}): {:.3} Mrays/s, {:.2} tests/ray, build {:.1} ms",
@@ -321,6 +321,7 @@ fn summarize(rows: &[SweepRow], default: &str) {
             h.prim_tests_per_ray
         );
     }
+    Ok(())
 }
 
 fn run_grid2(a: Grid2SweepArgs) -> anyhow::Result<()> {

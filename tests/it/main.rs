@@ -12,6 +12,7 @@ mod bvh;
 mod cameras;
 mod cli;
 mod compare;
+mod full_disk;
 mod grid;
 mod grid2;
 mod kdtree;
