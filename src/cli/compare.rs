@@ -31,6 +31,14 @@ pub fn run(a: CompareArgs) -> anyhow::Result<()> {
     let c = compare_runs(&rows_a, &rows_b);
     print!("{}", comparison_text(&c, a.fail_above));
     if let Some(pct) = a.fail_above {
+        // A gate that compared nothing has not passed.
+        anyhow::ensure!(
+            !c.changes.is_empty(),
+            "{} and {} share no row (scene x index x ray set x threads), so --fail-above compared \
+             nothing: compare runs of the same scenes, indices, ray sets and thread counts",
+            a.run_a.display(),
+            a.run_b.display()
+        );
         let failing: Vec<&str> = (c.changes.iter())
             .filter(|x| x.fails(pct))
             .map(|x| x.key.as_str())

@@ -141,10 +141,20 @@ fn end_quietly_on_closed_pipe() {
     }
 }
 
-/// Parses a `--threads` value: a positive count.
+/// Parses a `--threads` value: a positive count. A count above the machine's cores is taken,
+/// with a note on stderr (the threads then share cores, and timings measure that).
 pub(crate) fn parse_threads(s: &str) -> Result<usize, String> {
     match s.parse::<usize>() {
-        Ok(n) if (1..=4096).contains(&n) => Ok(n),
+        Ok(n) if (1..=4096).contains(&n) => {
+            let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+            if n > cores {
+                eprintln!(
+                    "note: --threads {n} is more than the {cores} cores here: threads will share \
+                     cores, and timings at {n} threads measure that"
+                );
+            }
+            Ok(n)
+        }
         _ => Err(format!(
             "'{s}' is not a thread count: give a whole number from 1 to 4096"
         )),

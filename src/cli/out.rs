@@ -3,9 +3,11 @@
 //! every subcommand with macros that write through [`write_stdout`] and return its error with
 //! `?`, so a subcommand's output lines look like std's and still end it on a failed write;
 //! [`flush_stdout`] catches what is left in the buffer when the command ends.
+//! [`refuse_overwriting`] keeps an output file from replacing the command's own input.
 
 use anyhow::Context;
 use std::io::Write;
+use std::path::Path;
 
 /// Writes `args` to stdout (line-buffered: a line's write error shows at its newline).
 pub fn write_stdout(args: std::fmt::Arguments) -> anyhow::Result<()> {
@@ -19,4 +21,20 @@ pub fn flush_stdout() -> anyhow::Result<()> {
     std::io::stdout()
         .flush()
         .context("writing to standard output")
+}
+
+/// Fails when `output` (given as `flag`) names the same existing file as `input`, which writing
+/// it would destroy before, or while, it is read.
+pub fn refuse_overwriting(input: &Path, output: &Path, flag: &str) -> anyhow::Result<()> {
+    let same = match (input.canonicalize(), output.canonicalize()) {
+        (Ok(i), Ok(o)) => i == o,
+        _ => false,
+    };
+    anyhow::ensure!(
+        !same,
+        "{flag} {} is the input file {}: writing it would overwrite the input; give another path",
+        output.display(),
+        input.display()
+    );
+    Ok(())
 }

@@ -141,13 +141,20 @@ impl SuiteArgs {
             !names.is_empty(),
             "--indices is empty: name at least one index"
         );
-        names
+        let specs: Vec<IndexSpec> = names
             .iter()
             .map(|n| {
                 n.parse::<IndexSpec>()
                     .with_context(|| format!("index '{n}'"))
             })
-            .collect()
+            .collect::<anyhow::Result<_>>()?;
+        if let Some((_, twice)) = (specs.iter().enumerate()).find(|(i, s)| specs[..*i].contains(s))
+        {
+            anyhow::bail!(
+                "--indices lists '{twice}' twice (it would be built and traced twice): list each index once"
+            );
+        }
+        Ok(specs)
     }
 
     pub fn sets(&self) -> Vec<RaySet> {

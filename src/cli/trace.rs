@@ -36,6 +36,9 @@ pub struct TraceArgs {
 }
 
 pub fn run(a: TraceArgs) -> anyhow::Result<()> {
+    if let Some(hits) = &a.hits {
+        super::out::refuse_overwriting(&a.rays, hits, "--hits")?;
+    }
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
     let mut rays = read_rays(&a.rays)?;
     if let Some(limit) = a.limit {

@@ -169,11 +169,15 @@ fn run_scene(
             },
         };
         if rays.is_empty() {
-            res.note(
-                scene,
-                format!("ray set {}", set.name()),
-                "skipped: no primary hit to start from (or no light the hit surfaces face)".into(),
-            );
+            let reason = match primary_hits.iter().flatten().count() {
+                0 => "skipped: no primary hit to start from".to_owned(),
+                n => format!(
+                    "skipped: none of the {n} primary hits starts a ray: their surfaces have no \
+                     finite normal (zero area, or coordinates so large that it overflows f32) or \
+                     face away from every light"
+                ),
+            };
+            res.note(scene, format!("ray set {}", set.name()), reason);
             progress.inc(built.len() as u64);
             continue;
         }

@@ -9,6 +9,8 @@ mod geometry;
 mod material;
 mod meshes_dir;
 pub mod obj;
+mod obj_statements;
+mod obj_text;
 pub mod obj_writer;
 pub mod transform;
 mod transform_shapes;

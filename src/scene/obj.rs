@@ -4,6 +4,8 @@
 //! range, faces of fewer than 3 vertices).
 
 use super::SceneError;
+use super::obj_statements::unknown_statements;
+use super::obj_text::read_obj_text;
 use crate::geometry::{Aabb, Triangle};
 use glam::Vec3A;
 use std::path::Path;
@@ -16,17 +18,20 @@ pub struct ObjMesh {
     pub vertex_bounds: Aabb,
 }
 
-/// Loads an OBJ file. Errors: missing or unreadable file, malformed content, NaN or infinite
+/// Loads an OBJ file (its text prepared by [`read_obj_text`]: comments cut, names in any
+/// encoding), warning on stderr once per kind of statement the format does not have
+/// (ignored, as tobj ignores it), with its first line. Errors: missing or unreadable file, malformed content, NaN or infinite
 /// coordinates (with the line), no vertices, or no faces.
 pub fn load_obj(path: &Path) -> Result<ObjMesh, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_owned(),
-        cause: source,
-    })?;
-    // A UTF-8 byte-order mark (some Windows exporters write one) is not part of the first line.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let text = &read_obj_text(path)?;
     let vertex_bounds = scan_vertices(path, text)?;
     check_faces(path, text)?;
+    for (word, line) in unknown_statements(text) {
+        eprintln!(
+            "warning: {}, line {line}: '{word}' is not an OBJ statement; its lines are ignored (a typo of 'f' or 'v'?)",
+            path.display()
+        );
+    }
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -77,13 +82,27 @@ fn scan_vertices(path: &Path, text: &str) -> Result<Aabb, SceneError> {
         if it.next() != Some("v") {
             continue;
         }
+        let err = |message: String| SceneError::Obj {
+            path: path.to_owned(),
+            message: format!("line {}: {message} ('{}')", n + 1, line.trim()),
+        };
+        let numbers: Vec<&str> = it.collect();
+        if ![3, 4, 6].contains(&numbers.len()) {
+            return Err(err(format!(
+                "a vertex is 'v x y z', optionally with a weight w or a colour r g b; this one has {} numbers",
+                numbers.len()
+            )));
+        }
         let mut c = [0.0f32; 3];
-        for ci in c.iter_mut() {
-            let tok = it.next().unwrap_or("");
-            *ci = tok.parse::<f32>().map_err(|_| SceneError::Obj {
-                path: path.to_owned(),
-                message: format!("line {}: bad vertex coordinate '{}'", n + 1, tok),
-            })?;
+        for (ci, tok) in c.iter_mut().zip(&numbers) {
+            *ci = tok
+                .parse::<f32>()
+                .map_err(|_| err(format!("bad vertex coordinate '{tok}'")))?;
+            if ci.is_infinite() && tok.parse::<f64>().is_ok_and(f64::is_finite) {
+                return Err(err(format!(
+                    "coordinate {tok} is beyond the range of f32 (about -3.4e38 to 3.4e38); scale the model down"
+                )));
+            }
             if !ci.is_finite() {
                 return Err(SceneError::NonFiniteVertex {
                     path: path.to_owned(),

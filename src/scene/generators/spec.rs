@@ -41,7 +41,8 @@ impl GeneratorSpec {
         })
     }
 
-    /// Parses `NAME` or `NAME:key=value,...` with keys `n` and `seed` (digits, `_` allowed).
+    /// Parses `NAME` or `NAME:key=value,...` with keys `n` and `seed` (digits, `_` allowed),
+    /// each at most once.
     /// An unknown name is [`SceneError::UnknownScene`]; anything else wrong is
     /// [`SceneError::Invalid`] naming the bad part.
     pub fn parse(arg: &str) -> Result<GeneratorSpec, SceneError> {
@@ -50,10 +51,18 @@ impl GeneratorSpec {
         let bad = |message: String| SceneError::Invalid(arg.to_owned(), message);
         GeneratorSpec::new(name, 1, 0)?;
         let (mut n, mut seed) = (DEFAULT_SIZE as i64, DEFAULT_SEED);
+        let mut seen: Vec<&str> = Vec::new();
         for item in rest.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             let (key, value) = item
                 .split_once('=')
                 .ok_or_else(|| bad(format!("'{item}' is not key=value (keys: n, seed)")))?;
+            if seen.contains(&key.trim()) {
+                return Err(bad(format!(
+                    "'{}' is given twice: give each parameter once",
+                    key.trim()
+                )));
+            }
+            seen.push(key.trim());
             let value = value.trim().replace('_', "");
             let number = || {
                 value
@@ -63,8 +72,10 @@ impl GeneratorSpec {
             match key.trim() {
                 "n" => n = number()?,
                 "seed" => {
-                    seed = value.parse::<u64>().map_err(|_| {
-                        bad(format!("'{item}': the seed must be a whole number >= 0"))
+                    let digits = !value.is_empty() && value.bytes().all(|b| b.is_ascii_digit());
+                    seed = value.parse::<u64>().map_err(|_| match digits {
+                        true => bad(format!("'{item}': the seed must be at most {}", u64::MAX)),
+                        false => bad(format!("'{item}': the seed must be a whole number >= 0")),
                     })?
                 }
                 other => {
@@ -127,6 +138,8 @@ mod tests {
             "soup:seed=-1",
             "soup:size=10",
             "soup:n",
+            "soup:n=10,n=20",
+            "soup:seed=1,n=5,seed=1",
         ] {
             assert!(
                 matches!(GeneratorSpec::parse(bad), Err(SceneError::Invalid(..))),

@@ -1,0 +1,86 @@
+//! Bad OBJ input gets a message that names the line and what to fix, and what the loader
+//! ignores anyway (names, comments) is not a reason to refuse a file (issue 47, case 9).
+
+use crate::common::cli::{accelbench, accelbench_fails};
+
+const TRIANGLE: &[u8] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+/// Writes `bytes` as an .obj file and runs `info` on it.
+fn info_of(bytes: &[u8], check: impl FnOnce(&str, std::process::Output)) {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("m.obj");
+    std::fs::write(&obj, bytes).unwrap();
+    let path = obj.to_str().unwrap();
+    check(path, accelbench(&["info", "--scene", path]));
+}
+
+fn loads(bytes: &[u8]) {
+    info_of(bytes, |p, out| {
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{p}: {err}");
+    });
+}
+
+fn refused(bytes: &[u8], expected: &[&str]) {
+    info_of(bytes, |p, _| {
+        accelbench_fails(&["info", "--scene", p], expected)
+    });
+}
+
+#[test]
+fn names_in_latin1_and_trailing_comments_are_accepted() {
+    loads(&[b"o caf\xe9\ng gr\xfcn\nusemtl m\xe4t\n", TRIANGLE].concat());
+    loads(b"v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3 # the face\n");
+}
+
+#[test]
+fn vertex_errors_name_their_line_and_the_fix() {
+    refused(
+        b"v 0 0 0\nv 1 \xe9 0\nv 0 1 0\nf 1 2 3\n",
+        &["line 2: ", "UTF-8"],
+    );
+    let counts = [&b"v 0 0 0 1 2 3 4 5\n"[..], b"v 0 0\n"];
+    for v in counts {
+        refused(&[v, TRIANGLE].concat(), &["line 1: a vertex is 'v x y z'"]);
+    }
+    refused(
+        &[TRIANGLE, b"v 1e39 0 0\n"].concat(),
+        &["line 5: ", "beyond the range of f32"],
+    );
+}
+
+#[test]
+fn a_seed_too_large_says_the_limit() {
+    let spec = "soup:n=10,seed=18446744073709551616";
+    accelbench_fails(
+        &["info", "--scene", spec],
+        &["the seed must be at most 18446744073709551615"],
+    );
+}
+
+/// On one triangle at 1e30 the primary rays hit, but its normal overflows `f32`, so no
+/// secondary ray starts: the skip says so instead of "no primary hit" (issue 47, case 7).
+#[test]
+fn secondary_sets_skipped_on_a_huge_triangle_say_why() {
+    info_of(
+        b"v 1e30 1e30 1e30\nv 2e30 1e30 1e30\nv 1e30 2e30 1e30\nf 1 2 3\n",
+        |p, _| {
+            let out = crate::common::cli::accelbench_ok(&[
+                "verify",
+                "--quick",
+                "--quiet",
+                "--scenes",
+                p,
+                "--indices",
+                "bvh",
+                "--rays",
+                "primary,shadow",
+            ]);
+            assert!(
+                out.contains("ray set shadow: skipped: none of the"),
+                "{out}"
+            );
+            assert!(!out.contains("no primary hit"), "{out}");
+        },
+    );
+}
