@@ -1,5 +1,6 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
+pub mod median_interval;
 pub mod peer_check;
 pub mod shard;
 pub mod suite;

@@ -29,4 +29,5 @@ mod shapes;
 mod shard;
 mod stress;
 mod suite;
+mod verdict;
 mod wbvh;

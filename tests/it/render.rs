@@ -2,6 +2,7 @@
 //! heat-map pixels are the counting statistics of the camera rays, area lights give soft
 //! shadows (point lights hard ones), and bad parameters are clear CLI errors.
 
+use crate::common;
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::index::{Counters, IndexSpec, TraceIndex, build_index, index_names};
 use accelbench::render::{
@@ -11,7 +12,6 @@ use accelbench::render::{
 use accelbench::scene::{AreaLight, Material, Scene, generators, load_scene};
 use glam::Vec3;
 use std::path::Path;
-use crate::common;
 
 fn build(name: &str, scene: &Scene) -> Box<dyn TraceIndex> {
     build_index(
