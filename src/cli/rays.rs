@@ -11,7 +11,7 @@ pub struct RaysArgs {
     #[arg(long)]
     scene: String,
     /// Which set: the protocol's `primary` and `incoherent` (see ../shared/PROTOCOL.md), or the
-    /// camera-model sets `dof`, `motion`, `lens` (see the README).
+    /// camera-model sets `dof`, `motion`, `lens` (see docs/ray-sets.md).
     #[arg(long, value_enum)]
     set: RaySetKind,
     /// Output .rays file.

@@ -5,7 +5,7 @@ use super::parse_kernel;
 use super::{parse_threads, with_threads};
 use crate::camera::ModelKind;
 use crate::geometry::TriangleKernelKind;
-use crate::index::{IndexSpec, build_index};
+use crate::index::{IndexSpec, TraceMode, build_index};
 use crate::render::{
     Filter, HeatmapKind, RenderOptions, Sampling, render_heatmap, render_shaded_with,
 };
@@ -50,6 +50,10 @@ pub struct RenderArgs {
     /// Triangle kernel every index uses.
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
+    /// Trace mode of each row's camera rays: single, stream, last-hit, packets4, packets8 (the
+    /// image is the same in every mode; the time is not).
+    #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
+    mode: TraceMode,
 }
 
 pub fn run(a: RenderArgs) -> anyhow::Result<()> {
@@ -59,6 +63,7 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
         spp: a.spp,
         filter: a.filter,
         camera: a.camera,
+        mode: a.mode,
         ..Sampling::default()
     };
     anyhow::ensure!(

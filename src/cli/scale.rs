@@ -98,7 +98,7 @@ pub fn run(a: ScaleArgs) -> anyhow::Result<()> {
         brute_timing_budget: 2_000_000_000,
         timed: true,
         shard: Shard::WHOLE,
-        modes: Vec::new(),
+        modes: vec![crate::index::TraceMode::Single],
     };
     let pb = progress_bar(a.quiet);
     let mut rows = Vec::new();

@@ -45,12 +45,17 @@ pub struct SuiteArgs {
     /// folders with `accelbench merge`.
     #[arg(long, default_value = "1/1")]
     pub shard: Shard,
-    /// Also trace every set with the previous ray's hit primitive tested first ("check last hit
-    /// first"; rows `INDEX+last-hit`).
+    /// Trace modes, comma-separated: single (one query at a time, every index), stream (the
+    /// index's own batch technique: bvh4/bvh8 interleaved and lockstep walks, embree-p16's
+    /// 16-ray packets; rows `INDEX+stream` only for indices that have one), last-hit (the
+    /// previous ray's hit primitive tested first), packets4, packets8 (the coherent sets in
+    /// packets of neighbouring rays; bvh, bvh4 and bvh8 walk packets, the others ray by ray).
+    #[arg(long, value_delimiter = ',', value_parser = TraceMode::parse, default_value = "single,stream")]
+    pub modes: Vec<TraceMode>,
+    /// Shorthand: add `last-hit` to `--modes`.
     #[arg(long)]
     pub last_hit: bool,
-    /// Also trace the coherent sets (primary, shadow, dof, motion, lens) in packets of 4 or 8
-    /// neighbouring rays (rows `INDEX+packetsN`; `bvh`, `bvh4` and `bvh8` traverse packets, the others ray by ray).
+    /// Shorthand: add `packets4` or `packets8` to `--modes`.
     #[arg(long, value_parser = parse_packet_size)]
     pub packets: Option<usize>,
 }
@@ -167,13 +172,22 @@ impl SuiteArgs {
         }
     }
 
-    /// The modes besides ray by ray that `--last-hit` and `--packets` ask for.
+    /// The modes of `--modes` with those `--last-hit` and `--packets` add, each once, in the
+    /// order given.
     pub fn modes(&self) -> Vec<TraceMode> {
-        let mut v = Vec::new();
-        if self.last_hit {
-            v.push(TraceMode::LastHit);
+        let extra = self.last_hit.then_some(TraceMode::LastHit);
+        let mut v: Vec<TraceMode> = Vec::new();
+        for m in self
+            .modes
+            .iter()
+            .copied()
+            .chain(extra)
+            .chain(self.packets.map(TraceMode::Packets))
+        {
+            if !v.contains(&m) {
+                v.push(m);
+            }
         }
-        v.extend(self.packets.map(TraceMode::Packets));
         v
     }
 

@@ -3,7 +3,7 @@
 
 use super::{parse_kernel, parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
-use crate::index::{Counters, IndexSpec, build_index};
+use crate::index::{Counters, IndexSpec, TraceMode, build_index};
 use crate::rays::{read_rays, write_hits};
 use crate::scene::load_scene;
 use anyhow::Context;
@@ -33,6 +33,10 @@ pub struct TraceArgs {
     /// Triangle kernel every index uses.
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
+    /// Trace mode: single (one query at a time), stream (the index's own batch technique),
+    /// last-hit, packets4, packets8.
+    #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
+    mode: TraceMode,
 }
 
 pub fn run(a: TraceArgs) -> anyhow::Result<()> {
@@ -49,13 +53,15 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
     let index = with_threads(threads, || build_index(&a.index, &geom, a.kernel))??;
     let mut hits = vec![None; rays.len()];
     let start = Instant::now();
-    with_threads(threads, || index.closest_hits(&rays, &mut hits))?;
+    with_threads(threads, || {
+        index.closest_hits_in(a.mode, &rays, &mut hits, None)
+    })?;
     let secs = start.elapsed().as_secs_f64();
     // Counting pass, separate from the timed one.
     let mut counted = vec![None; rays.len()];
     let mut per_ray = vec![Counters::default(); rays.len()];
     with_threads(threads, || {
-        index.closest_hits_counted(&rays, &mut counted, &mut per_ray)
+        index.closest_hits_in(a.mode, &rays, &mut counted, Some(&mut per_ray))
     })?;
     let total: Counters = per_ray.iter().copied().sum();
     let n = rays.len().max(1) as f64;
@@ -70,6 +76,7 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
     );
     println!("index:            {} {}", index.name(), index.params());
     println!("kernel:           {}", a.kernel);
+    println!("mode:             {}", a.mode.label());
     println!("threads:          {threads}");
     println!(
         "build:            {:.3} ms",

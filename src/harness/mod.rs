@@ -1,6 +1,7 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
 pub mod contain;
+pub mod median_interval;
 pub mod peer_check;
 pub mod shard;
 pub mod suite;

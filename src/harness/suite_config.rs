@@ -26,8 +26,9 @@ pub struct SuiteConfig {
     pub timed: bool,
     /// The share of the scene x index work this run does ([`Shard::WHOLE`] for all of it).
     pub shard: Shard,
-    /// Modes each index is also traced in besides ray by ray (`run --last-hit`,
-    /// `--packets N`): verified against the ray-by-ray hits, with rows of their own.
+    /// The trace modes (`run --modes`): each index is traced in every mode that applies to it
+    /// and to the set ([`crate::index::TraceIndex::traces_in`]), its first against brute force
+    /// and the first index, the later ones against its first, each with rows of its own.
     pub modes: Vec<TraceMode>,
 }
 

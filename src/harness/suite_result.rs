@@ -6,13 +6,26 @@ use super::workload::RaySet;
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 
-/// One row of `results.csv`: scene x index x ray set x threads.
+fn nan() -> f64 {
+    f64::NAN
+}
+
+fn single() -> String {
+    "single".into()
+}
+
+/// One row of `results.csv`: scene x index (and trace mode) x ray set x threads. Columns added
+/// after the first reports (`mode`, the interval) read back with defaults from older files.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct ResultRow {
     pub scene: String,
     pub primitives: usize,
+    /// The row's label: the index name, with `+MODE` for every mode but `single`.
     pub index: String,
     pub params: String,
+    /// The trace mode (`single`, `stream`, `last-hit`, `packets8`; `index::TraceMode::label`).
+    #[serde(default = "single")]
+    pub mode: String,
     pub ray_set: String,
     pub rays: usize,
     pub threads: usize,
@@ -21,6 +34,12 @@ pub struct ResultRow {
     pub trace_ms_median: f64,
     pub trace_ms_spread: f64,
     pub mrays_per_s: f64,
+    /// The 95% interval of the median's Mrays/s over the timed repeats
+    /// (`harness::median_interval`; the whole range below 6 repeats).
+    #[serde(default = "nan")]
+    pub mrays_ci_low: f64,
+    #[serde(default = "nan")]
+    pub mrays_ci_high: f64,
     pub mtests_per_s: f64,
     pub prim_tests_per_ray: f64,
     pub node_visits_per_ray: f64,
@@ -46,6 +65,16 @@ pub struct ResultRow {
     pub peer_t_off: Option<usize>,
     /// Peers only: verified rays where the exact reference contradicts the peer.
     pub peer_wrong: Option<usize>,
+}
+
+impl ResultRow {
+    /// Rays this row got wrong, when it got any: for peers the verified rays the exact
+    /// reference contradicts (`peer_wrong`; ties and `t` off are not wrong), for our indices
+    /// any mismatch.
+    pub fn wrong(&self) -> Option<usize> {
+        let n = self.peer_wrong.unwrap_or(self.mismatches);
+        (n > 0).then_some(n)
+    }
 }
 
 /// A mismatch with where it happened.

@@ -170,9 +170,10 @@ fn brute_over_budget(
 }
 
 /// Runs every built index on one ray set and appends its rows to `res`. First each index is
-/// counted and verified, traced ray by ray and then in every extra mode of `cfg.modes` that
-/// applies to the set; then all of them are timed together ([`timed_passes`]). An index that
-/// panics in a counting or timed pass gets a failure note instead of rows, and is returned.
+/// counted and verified in every mode of `cfg.modes` that applies to the set and to the index
+/// ([`TraceIndex::traces_in`]); then all of them are timed together ([`timed_passes`]). An
+/// index that panics in a counting or timed pass gets a failure note instead of rows, and is
+/// returned.
 pub(super) fn run_set<'a>(
     mut run: SetRun<'a>,
     built: &'a [Box<dyn TraceIndex>],
@@ -195,16 +196,23 @@ pub(super) fn run_set<'a>(
             progress.inc(1);
             continue;
         }
-        let (set, first) = (run.set, entries.len());
+        let first = entries.len();
         // A panic can only come from the index's trace, before that mode's verification: what
-        // the earlier modes recorded stays (their hits were verified).
+        // the earlier modes recorded stays (their hits were verified). The first mode traced is
+        // verified against brute force and the first index; the later ones against it, ray by
+        // ray.
         let counted = contained(|| {
-            let single = count_mode(&mut run, index, TraceMode::Single, None, pools, res);
-            for &mode in cfg.modes.iter().filter(|m| applies(**m, set)) {
-                let entry = count_mode(&mut run, index, mode, Some(&single.hits), pools, res);
+            let mut reference: Option<(TraceMode, BatchHits)> = None;
+            let set = run.set;
+            for &mode in cfg
+                .modes
+                .iter()
+                .filter(|m| applies(**m, set) && index.traces_in(**m))
+            {
+                let entry = count_mode(&mut run, index, mode, reference.as_ref(), pools, res);
+                reference.get_or_insert_with(|| (mode, entry.hits.clone()));
                 entries.push(entry);
             }
-            entries.insert(first, single);
         });
         if let Err(p) = counted {
             entries.truncate(first);
@@ -235,6 +243,7 @@ pub(super) fn run_set<'a>(
         for (threads, timing) in timings {
             let mut row = result_row(&run, entry.index, &counts, threads, timing, cfg);
             row.index.clone_from(&label);
+            row.mode = entry.mode.label();
             res.rows.push(row);
         }
     }
@@ -269,13 +278,14 @@ struct Entry<'a> {
     failed: Option<String>,
 }
 
-/// The counting pass of one index in one mode and its verification (ray by ray: against brute
-/// force and the first index; other modes: against the ray-by-ray answers `single`).
+/// The counting pass of one index in one mode and its verification: the index's first mode
+/// against brute force and the first index, later modes against the first mode's answers
+/// `reference`.
 fn count_mode<'a>(
     run: &mut SetRun<'a>,
     index: &'a dyn TraceIndex,
     mode: TraceMode,
-    single: Option<&BatchHits>,
+    reference: Option<&(TraceMode, BatchHits)>,
     pools: &Pools,
     res: &mut SuiteResult,
 ) -> Entry<'a> {
@@ -293,9 +303,9 @@ fn count_mode<'a>(
         count: 0,
         peer: is_peer(index.name()).then(PeerCounts::default),
     };
-    match single {
+    match reference {
         None => run.verify(index, &hits, &mut tally, res),
-        Some(single) => tally.record("single", compare_closest(run.rays, single, &hits), res),
+        Some((m, r)) => tally.record(&m.label(), compare_closest(run.rays, r, &hits), res),
     }
     Entry {
         index,
@@ -383,14 +393,16 @@ fn result_row(
     let info = index.info();
     // Indices that count nothing (Embree, tinybvh) get NaN ("–" in the summary), not 0.
     let counted = |v: f64| if info.uncounted { f64::NAN } else { v };
-    let (median, spread) = timing.map_or((f64::NAN, f64::NAN), |t| {
-        (t.median.as_secs_f64(), t.spread.as_secs_f64())
+    let secs = |d: std::time::Duration| d.as_secs_f64();
+    let [median, spread, fastest, slowest] = timing.map_or([f64::NAN; 4], |t| {
+        [t.median, t.spread, t.fastest, t.slowest].map(secs)
     });
     ResultRow {
         scene: run.scene.name.clone(),
         primitives: run.scene.len(),
         index: index.name().to_owned(),
         params: index.params().to_owned(),
+        mode: TraceMode::Single.label(),
         ray_set: run.set.name().to_owned(),
         rays: run.rays.len(),
         threads,
@@ -399,6 +411,8 @@ fn result_row(
         trace_ms_median: median * 1e3,
         trace_ms_spread: spread * 1e3,
         mrays_per_s: n / median / 1e6,
+        mrays_ci_low: n / slowest / 1e6,
+        mrays_ci_high: n / fastest / 1e6,
         mtests_per_s: counted(c.total.prim_tests as f64 / median / 1e6),
         prim_tests_per_ray: counted(c.total.prim_tests as f64 / n),
         node_visits_per_ray: counted(c.total.node_visits as f64 / n),

@@ -12,11 +12,15 @@ pub enum Query {
     Any,
 }
 
-/// Median and spread (max - min) of repeated timings.
+/// Median, spread (max - min) and the median's confidence interval
+/// ([`super::median_interval`]) of repeated timings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Timing {
     pub median: Duration,
     pub spread: Duration,
+    /// The interval of the median: `fastest <= median <= slowest`.
+    pub fastest: Duration,
+    pub slowest: Duration,
     pub repeats: usize,
 }
 
@@ -26,13 +30,16 @@ impl Timing {
         rays as f64 / self.median.as_secs_f64().max(1e-12)
     }
 
-    /// Median and spread of non-empty samples.
+    /// Median, spread and interval of non-empty samples.
     pub fn of(mut samples: Vec<Duration>) -> Timing {
         samples.sort();
         let repeats = samples.len();
+        let (fastest, slowest) = super::median_interval::of_sorted(&samples);
         Timing {
             median: samples[repeats / 2],
             spread: samples[repeats - 1] - samples[0],
+            fastest,
+            slowest,
             repeats,
         }
     }
@@ -148,6 +155,10 @@ mod tests {
         let ms = Duration::from_millis;
         let t = Timing::of(vec![ms(5), ms(1), ms(9), ms(3), ms(4)]);
         assert_eq!((t.median, t.spread, t.repeats), (ms(4), ms(8), 5));
+        // Five samples: the interval is the whole range.
+        assert_eq!((t.fastest, t.slowest), (ms(1), ms(9)));
+        let t = Timing::of((1..=9).rev().map(ms).collect());
+        assert_eq!((t.median, t.fastest, t.slowest), (ms(5), ms(2), ms(8)));
     }
 
     /// Zero repeats still time one pass, and the pass's answers are the index's.

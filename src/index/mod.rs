@@ -31,7 +31,7 @@ pub mod tinybvh_peer;
 mod triangle_peer;
 pub mod wbvh;
 
-pub use batch::{MAX_PACKET, TraceMode};
+pub use batch::{MAX_PACKET, ModeFamily, TraceMode};
 pub use brute::BruteForce;
 pub use bsp::Bsp;
 pub use bvh::{Bvh, BvhParams};
@@ -118,13 +118,24 @@ pub trait Index: Sized + Send + Sync + 'static {
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;
 
+    /// Whether the index has a batch technique of its own ([`Index::closest_hits_stream`] is
+    /// overridden): the suite then gives it `INDEX+stream` rows. An index without one has no
+    /// stream row; the verdict lets its one-at-a-time row stand for it.
+    const STREAM: bool = false;
+
+    /// Whether one-query-at-a-time rows of the index measure anything of its own: `false` for
+    /// an index that exists only as a batch technique over another index's single rays
+    /// (`embree-p16`), which then gets only `+stream` rows.
+    const SINGLE: bool = true;
+
     /// Closest hits of a chunk of consecutive rays of a batch (the harness's parallel work item,
-    /// at most 64 rays; image order for camera sets; `out` and `stats` as long as `rays`): how
-    /// the harness traces a batch ray by ray ([`TraceMode::Single`]). By default
-    /// [`Index::closest_hit`] per ray; an index that traces several rays per call (Embree's
-    /// 16-ray packets, `embree-p16`) overrides it.
+    /// at most 64 rays; image order for camera sets; `out` and `stats` as long as `rays`) with
+    /// the index's own batch technique ([`TraceMode::Stream`]). By default
+    /// [`Index::closest_hit`] per ray; an index that traces several rays at a time (interleaved
+    /// walks in `bvh4`/`bvh8`, Embree's 16-ray packets in `embree-p16`) overrides it and sets
+    /// [`Index::STREAM`].
     #[inline]
-    fn closest_hits_chunk<G: Geometry, S: Stats>(
+    fn closest_hits_stream<G: Geometry, S: Stats>(
         &self,
         geom: &G,
         rays: &[Ray],
@@ -134,9 +145,9 @@ pub trait Index: Sized + Send + Sync + 'static {
         batch::each_closest(self, geom, rays, out, stats);
     }
 
-    /// Any-hit results of a chunk, as [`Index::closest_hits_chunk`].
+    /// Any-hit results of a chunk, as [`Index::closest_hits_stream`].
     #[inline]
-    fn any_hits_chunk<G: Geometry, S: Stats>(
+    fn any_hits_stream<G: Geometry, S: Stats>(
         &self,
         geom: &G,
         rays: &[Ray],

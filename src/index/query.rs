@@ -11,8 +11,17 @@ use crate::scene::Geometry;
 pub trait Query: Send + Sync + 'static {
     /// One ray's answer (`Option<Hit>` or `bool`).
     type Answer: Copy + Send + Sync;
-    /// A chunk of a batch ray by ray ([`Index::closest_hits_chunk`] or `any_hits_chunk`), or
-    /// with `PACKET` one packet ([`Index::closest_hits_packet`] or `any_hits_packet`).
+    /// A chunk of a batch one query at a time ([`Index::closest_hit`] or `any_hit` per ray).
+    fn each<I: Index, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        rays: &[Ray],
+        out: &mut [Self::Answer],
+        stats: &mut [S],
+    );
+    /// A chunk of a batch with the index's own batch technique ([`Index::closest_hits_stream`]
+    /// or `any_hits_stream`), or with `PACKET` one packet ([`Index::closest_hits_packet`] or
+    /// `any_hits_packet`).
     fn batch<const PACKET: bool, I: Index, G: Geometry, S: Stats>(
         i: &I,
         g: &G,
@@ -38,9 +47,19 @@ pub enum AnyHit {}
 
 /// `impl Query for $kind`: the [`Index`] methods and the last-hit function that answer it.
 macro_rules! answered_by {
-    ($kind:ty, $answer:ty, $chunk:ident, $packet:ident, $last_hit:path) => {
+    ($kind:ty, $answer:ty, $each:path, $chunk:ident, $packet:ident, $last_hit:path) => {
         impl Query for $kind {
             type Answer = $answer;
+            #[inline]
+            fn each<I: Index, G: Geometry, S: Stats>(
+                i: &I,
+                g: &G,
+                r: &[Ray],
+                o: &mut [Self::Answer],
+                s: &mut [S],
+            ) {
+                $each(i, g, r, o, s)
+            }
             #[inline]
             fn batch<const PACKET: bool, I: Index, G: Geometry, S: Stats>(
                 i: &I,
@@ -72,14 +91,16 @@ macro_rules! answered_by {
 answered_by!(
     Closest,
     Option<Hit>,
-    closest_hits_chunk,
+    super::batch::each_closest,
+    closest_hits_stream,
     closest_hits_packet,
     last_hit::closest_hit
 );
 answered_by!(
     AnyHit,
     bool,
-    any_hits_chunk,
+    super::batch::each_any,
+    any_hits_stream,
     any_hits_packet,
     last_hit::any_hit
 );

@@ -271,6 +271,19 @@ pub trait TraceIndex: Send + Sync {
     /// The parameters it was built with, as `key=value` pairs.
     fn params(&self) -> &str;
     fn info(&self) -> &IndexInfo;
+    /// Whether the index has a batch technique of its own ([`Index::STREAM`]).
+    fn has_stream(&self) -> bool;
+    /// Whether its one-query-at-a-time rows are its own ([`Index::SINGLE`]).
+    fn has_single(&self) -> bool;
+    /// Whether the suite traces it in `mode`: `stream` only with a batch technique of its own,
+    /// the one-at-a-time modes only when they are its own.
+    fn traces_in(&self, mode: TraceMode) -> bool {
+        match mode {
+            TraceMode::Stream => self.has_stream(),
+            TraceMode::Single | TraceMode::LastHit => self.has_single(),
+            TraceMode::Packets(_) => true,
+        }
+    }
     fn closest_hit(&self, ray: &Ray) -> Option<Hit>;
     fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit>;
     fn any_hit(&self, ray: &Ray) -> bool;
@@ -355,6 +368,12 @@ impl<I: Index, G: Geometry> TraceIndex for BoundIndex<I, G> {
     }
     fn info(&self) -> &IndexInfo {
         &self.info
+    }
+    fn has_stream(&self) -> bool {
+        I::STREAM
+    }
+    fn has_single(&self) -> bool {
+        I::SINGLE
     }
     fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         self.index.closest_hit(&self.geom, ray, &mut NoStats)

@@ -5,6 +5,7 @@
 
 use crate::camera::sampler::stratified;
 use crate::camera::{CameraSample, ModelKind};
+use crate::index::TraceMode;
 
 /// Largest accepted number of samples per pixel.
 pub const MAX_SPP: u32 = 4096;
@@ -29,6 +30,8 @@ pub struct Sampling {
     pub camera: ModelKind,
     /// Seed of the strata's permutations and jitters.
     pub seed: u64,
+    /// How each row's camera rays are traced as a batch (the image is the same in every mode).
+    pub mode: TraceMode,
 }
 
 impl Default for Sampling {
@@ -38,6 +41,7 @@ impl Default for Sampling {
             filter: Filter::Box,
             camera: ModelKind::Pinhole,
             seed: 1,
+            mode: TraceMode::Single,
         }
     }
 }

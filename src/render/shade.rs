@@ -28,7 +28,8 @@ const GAMMA: f32 = 2.2;
 /// [`view_camera`]), its closest hit, and the Phong colour of that hit (see [`Material`]) under
 /// the scene's point lights (or one default light when it has neither point nor area lights) and
 /// area lights. Two-sided: the normal is flipped towards the viewer. No distance falloff, as in
-/// the course's ray caster. Parallel over rows; no allocation per ray.
+/// the course's ray caster. Parallel over rows, each row's camera rays traced as one batch in
+/// `Sampling::mode` (the image is the same in every mode); no allocation per ray.
 pub fn render_shaded(
     scene: &Scene,
     index: &dyn TraceIndex,
@@ -70,16 +71,27 @@ pub fn render_shaded_with(
     let mut img = Image::new(opts.width, opts.height);
     let rows: Vec<&mut [u8]> = img.rows_mut().collect();
     rows.into_par_iter().enumerate().for_each(|(j, row)| {
+        let j = j as u32;
+        let pixel = |i: u32| j as u64 * width as u64 + i as u64;
+        // The row's camera rays (those the model can make), traced as one batch in the mode.
+        let samples = (0..width).flat_map(|i| (0..spp).map(move |k| (i, k)));
+        let rays: Vec<Ray> = samples
+            .filter_map(|(i, k)| model.ray(&cam, &sampling.sample(i, j, pixel(i), k).0).ok())
+            .collect();
+        let mut hits = vec![None; rays.len()];
+        index.closest_hits_in(sampling.mode, &rays, &mut hits, None);
+        let mut traced = rays.iter().zip(hits);
         for (i, px) in row.chunks_exact_mut(3).enumerate() {
-            let (i, j) = (i as u32, j as u32);
-            let pixel = j as u64 * width as u64 + i as u64;
+            let i = i as u32;
             let (mut sum, mut weights) = (Vec3::ZERO, 0.0);
             for k in 0..spp {
-                let (s, w) = sampling.sample(i, j, pixel, k);
+                let (s, w) = sampling.sample(i, j, pixel(i), k);
                 let colour = match model.ray(&cam, &s) {
-                    Ok(ray) => match index.closest_hit(&ray) {
-                        Some(hit) => shader.shade(&ray, hit, pixel * spp as u64 + k as u64),
-                        None => BACKGROUND,
+                    Ok(_) => match traced.next().expect("one answer per ray") {
+                        (ray, Some(hit)) => {
+                            shader.shade(ray, hit, pixel(i) * spp as u64 + k as u64)
+                        }
+                        (_, None) => BACKGROUND,
                     },
                     Err(_) => BACKGROUND,
                 };

@@ -13,7 +13,7 @@
 //! split uncertain; `r2` and `points` say how well the model explains the times.
 
 use super::fixed;
-use super::verdict::index_label;
+use super::rows::index_label;
 use crate::harness::suite::ResultRow;
 
 impl CostFit {

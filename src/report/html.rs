@@ -3,10 +3,12 @@
 //! verdict matrix, the cost breakdown, build time and memory, the charts, the pictures,
 //! verification, machine and command.
 //!
-//! The verdict matrix is `table#verdict`: a `tr` per scene and ray set (`data-scene`,
-//! `data-set`, `data-threads`, `data-fastest`) and a `td.ratio` per index with `data-index` and
-//! `data-ratio` (the index's Mrays/s over the fastest's, full precision; the text shows two
-//! decimals), so tools can read it back.
+//! The verdict matrix is `table#verdict`: a `tr` per scene, ray set and mode family
+//! (`data-scene`, `data-set`, `data-family`, `data-threads`, `data-fastest`: the fastest
+//! correct contender) and per contender a `td.ratio` with `data-index` and `data-ratio` (its
+//! Mrays/s over the fastest's, full precision; the text shows two decimals, after `≈ ` for a
+//! tie, and the cell has class `tie`), or a `td.wrong` with `data-index` and `data-wrong` (its
+//! wrong rays) for a contender with wrong results, so tools can read it back.
 
 use super::ReportError;
 use super::cost_fit::CostFit;
@@ -54,13 +56,14 @@ pub fn write_html(
          <meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">\
          <title>accelbench run {id}</title><style>{STYLE}</style></head><body>\n\
          <h1>accelbench run {id}</h1><p class=\"sub\">{date} · {cpu} ({cores} cores) · kernel \
-         {kernel} · {repeats} timed repeats (median)</p>\n",
+         {kernel} · {repeats} timed repeats (median; {interval})</p>\n",
         id = esc(&meta.run_id),
         date = esc(&meta.date),
         cpu = esc(&meta.cpu),
         cores = meta.cores,
         kernel = esc(&meta.kernel),
         repeats = meta.repeats,
+        interval = crate::harness::median_interval::describe(meta.repeats),
     );
     s.push_str(&verification_banner(notes));
     s.push_str(&verdict_matrix(rows, verdicts));
@@ -102,17 +105,22 @@ fn verification_banner(notes: &RunNotes) -> String {
     s
 }
 
-/// The verdict: a row per scene and ray set, a colour-scaled cell per index.
+/// The verdict: a row per scene, ray set and mode family, a colour-scaled cell per index (ties
+/// in the winner's colour, wrong contenders in red with their speed and wrong count).
 fn verdict_matrix(rows: &[ResultRow], verdicts: &[Verdict]) -> String {
     let Some(first) = verdicts.first() else {
         return "<h2>Verdict</h2><p>No timed results.</p>\n".into();
     };
     let labels = uniq_labels(rows);
     let mut s = format!(
-        "<h2 id=\"verdict-title\">Verdict</h2>\n<p>Per scene and ray set, the fastest index \
-         (Mrays/s at {} thread(s)) and every index's speed as a share of it: 1 is the fastest, \
-         0.5 half its speed. Colour: green for the fastest, red at a tenth of its speed or \
-         less.</p>\n<table id=\"verdict\"><thead><tr><th>scene</th><th>rays</th>\
+        "<h2 id=\"verdict-title\">Verdict</h2>\n<p>Per scene, ray set and mode family (one \
+         query at a time, or batch), the fastest index whose results are correct (Mrays/s at {} \
+         thread(s)) and every index's speed as a share of it: 1 is the fastest, 0.5 half its \
+         speed. <b>≈</b>: a tie, the 95% intervals of the two medians overlap. An index with \
+         wrong results never wins: its cell shows its own Mrays/s and its wrong rays, in red. \
+         In the batch rows, an index without a batch mode of its own is represented by its \
+         single row. Colour: green for the fastest, red at a tenth of its speed or less.</p>\n\
+         <table id=\"verdict\"><thead><tr><th>scene</th><th>rays</th><th>modes</th>\
          <th>fastest</th><th>Mrays/s</th>",
         first.threads
     );
@@ -121,29 +129,50 @@ fn verdict_matrix(rows: &[ResultRow], verdicts: &[Verdict]) -> String {
     }
     s.push_str("</tr></thead><tbody>\n");
     for v in verdicts {
-        let (name, best) = v.fastest();
+        let (name, best) = v
+            .winner()
+            .map_or(("(none correct)".to_owned(), f64::NAN), |w| {
+                (w.shown(), w.mrays)
+            });
         let _ = write!(
             s,
-            "<tr data-scene=\"{sc}\" data-set=\"{set}\" data-threads=\"{t}\" \
-             data-fastest=\"{f}\"><td>{sc}</td><td>{set}</td><td><b>{f}</b></td>\
-             <td class=\"num\">{best:.2}</td>",
+            "<tr data-scene=\"{sc}\" data-set=\"{set}\" data-family=\"{fam}\" \
+             data-threads=\"{t}\" data-fastest=\"{f}\"><td>{sc}</td><td>{set}</td><td>{fam}</td>\
+             <td><b>{f}</b></td><td class=\"num\">{best:.2}</td>",
             sc = esc(&v.scene),
             set = esc(&v.ray_set),
+            fam = v.family.label(),
             t = v.threads,
-            f = esc(name),
+            f = esc(&name),
         );
         for l in &labels {
-            match v.ratio(l) {
-                Some(r) => {
+            let (Some(c), Some(text)) = (v.get(l), v.cell(l)) else {
+                s.push_str("<td class=\"na\">–</td>");
+                continue;
+            };
+            match (c.wrong, v.ratio(l)) {
+                (Some(n), _) => {
                     let _ = write!(
                         s,
-                        "<td class=\"ratio\" data-index=\"{}\" data-ratio=\"{r:?}\" \
-                         style=\"background:{}\">{r:.2}</td>",
+                        "<td class=\"wrong\" data-index=\"{}\" data-wrong=\"{n}\" \
+                         style=\"background:hsl(0,85%,62%)\">{}</td>",
                         esc(l),
-                        ratio_colour(r)
+                        esc(&text)
                     );
                 }
-                None => s.push_str("<td class=\"na\">–</td>"),
+                (None, Some(r)) => {
+                    let tie = v.tied(l);
+                    let _ = write!(
+                        s,
+                        "<td class=\"ratio{}\" data-index=\"{}\" data-ratio=\"{r:?}\" \
+                         style=\"background:{}\">{}</td>",
+                        if tie { " tie" } else { "" },
+                        esc(l),
+                        ratio_colour(if tie { 1.0 } else { r }),
+                        esc(&text)
+                    );
+                }
+                (None, None) => s.push_str("<td class=\"na\">–</td>"),
             }
         }
         s.push_str("</tr>\n");

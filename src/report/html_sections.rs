@@ -4,9 +4,8 @@
 
 use super::cost_fit::CostFit;
 use super::fixed as num;
+use super::rows::{index_label, scenes, uniq};
 use super::run_notes::RunNotes;
-use super::suite_plots::{scenes, uniq};
-use super::verdict::index_label;
 use crate::harness::suite::ResultRow;
 use std::fmt::Write as _;
 

@@ -2,9 +2,10 @@
 //! threads, with a noise estimate from each run's repeats, so a change can be told from noise
 //! (and CI can fail on a slowdown).
 //!
-//! Noise: a row's relative spread is its timed repeats' spread (max - min) over their median;
-//! the noise of a comparison is the larger of the two rows' relative spreads. A change is outside
-//! the noise when B's time differs from A's by more than that fraction.
+//! Noise: each row's 95% interval of its median speed (`mrays_ci_low`, `mrays_ci_high`;
+//! `harness::median_interval`). A change is outside the noise when the two rows' intervals do
+//! not overlap. Rows of reports written before the interval columns existed take the interval
+//! `median * (1 -+ spread / median)` from their repeats' spread (max - min).
 
 use super::ReportError;
 use serde::Deserialize;
@@ -23,6 +24,14 @@ pub struct TimedRow {
     pub trace_ms_median: f64,
     pub trace_ms_spread: f64,
     pub mrays_per_s: f64,
+    #[serde(default = "nan")]
+    pub mrays_ci_low: f64,
+    #[serde(default = "nan")]
+    pub mrays_ci_high: f64,
+}
+
+fn nan() -> f64 {
+    f64::NAN
 }
 
 impl TimedRow {
@@ -34,8 +43,16 @@ impl TimedRow {
         )
     }
 
-    fn relative_spread(&self) -> f64 {
-        self.trace_ms_spread / self.trace_ms_median
+    /// The row's interval of Mrays/s: its own, or from its spread in older reports.
+    fn interval(&self) -> (f64, f64) {
+        if self.mrays_ci_low.is_finite() && self.mrays_ci_high.is_finite() {
+            return (self.mrays_ci_low, self.mrays_ci_high);
+        }
+        let rel = self.trace_ms_spread / self.trace_ms_median;
+        (
+            self.mrays_per_s * (1.0 - rel),
+            self.mrays_per_s * (1.0 + rel),
+        )
     }
 }
 
@@ -45,8 +62,9 @@ pub struct Change {
     pub key: String,
     pub a_mrays: f64,
     pub b_mrays: f64,
-    /// The larger relative spread of the two rows (a fraction).
-    pub noise: f64,
+    /// The rows' intervals of Mrays/s, `(low, high)`.
+    pub a_interval: (f64, f64),
+    pub b_interval: (f64, f64),
 }
 
 impl Change {
@@ -60,9 +78,15 @@ impl Change {
         (self.a_mrays / self.b_mrays - 1.0) * 100.0
     }
 
-    /// Whether B's time differs from A's by more than the noise.
+    /// The wider of the two intervals, relative to its median (a fraction).
+    pub fn noise(&self) -> f64 {
+        let rel = |(lo, hi): (f64, f64), m: f64| (hi - lo) / m;
+        rel(self.a_interval, self.a_mrays).max(rel(self.b_interval, self.b_mrays))
+    }
+
+    /// Whether the two intervals are apart.
     pub fn outside_noise(&self) -> bool {
-        (self.a_mrays / self.b_mrays - 1.0).abs() > self.noise
+        self.a_interval.1 < self.b_interval.0 || self.b_interval.1 < self.a_interval.0
     }
 
     /// Slower by more than `pct` percent and by more than the noise.
@@ -112,7 +136,8 @@ pub fn compare_runs(a: &[TimedRow], b: &[TimedRow]) -> Comparison {
         match b.iter().find(|rb| rb.key() == key) {
             Some(rb) if ra.mrays_per_s.is_finite() && rb.mrays_per_s.is_finite() => {
                 c.changes.push(Change {
-                    noise: ra.relative_spread().max(rb.relative_spread()),
+                    a_interval: ra.interval(),
+                    b_interval: rb.interval(),
                     key,
                     a_mrays: ra.mrays_per_s,
                     b_mrays: rb.mrays_per_s,
@@ -160,7 +185,7 @@ pub fn comparison_text(c: &Comparison, fail_above: Option<f64>) -> String {
             x.a_mrays,
             x.b_mrays,
             x.ratio(),
-            x.noise * 100.0
+            x.noise() * 100.0
         );
     }
     for (title, keys) in [
@@ -181,8 +206,11 @@ pub fn comparison_text(c: &Comparison, fail_above: Option<f64>) -> String {
 mod tests {
     use super::*;
 
+    /// A row of an older report (no interval columns): the interval comes from the spread.
     fn row(scene: &str, threads: usize, ms: f64, spread: f64) -> TimedRow {
         TimedRow {
+            mrays_ci_low: f64::NAN,
+            mrays_ci_high: f64::NAN,
             scene: scene.into(),
             index: "bvh".into(),
             params: "p".into(),
@@ -213,6 +241,16 @@ mod tests {
             !same.outside_noise() && !same.fails(1.0),
             "3% within 5% noise"
         );
+        // With interval columns, the intervals decide: apart is a change, overlapping is not.
+        let with = |ms: f64, lo: f64, hi: f64| TimedRow {
+            mrays_ci_low: lo,
+            mrays_ci_high: hi,
+            ..row("s", 1, ms, 0.0)
+        };
+        let apart = compare_runs(&[with(10.0, 0.9, 1.1)], &[with(10.5, 0.8, 0.89)]);
+        assert!(apart.changes[0].outside_noise() && apart.changes[0].fails(1.0));
+        let overlap = compare_runs(&[with(10.0, 0.9, 1.1)], &[with(12.0, 0.8, 0.95)]);
+        assert!(!overlap.changes[0].outside_noise() && !overlap.changes[0].fails(1.0));
         assert!((slow.slower_pct() - 100.0).abs() < 1e-9 && slow.fails(50.0));
         assert!(!slow.fails(150.0));
         assert_eq!(c.missing_in_b, [a[2].key()]);

@@ -1,32 +1,11 @@
 //! The suite report's SVG charts: Mrays/s and tests per ray per ray set, build time, memory and
 //! thread scaling.
 
+use super::rows::{index_label, scenes, uniq, uniq_threads};
 use super::run_meta::RunMeta;
-use super::verdict::index_label;
 use super::{BarGroup, Chart, ReportError, Series, bar_chart, line_chart};
 use crate::harness::suite::ResultRow;
 use std::path::Path;
-
-/// Scenes in first-seen order.
-pub(super) fn scenes(rows: &[ResultRow]) -> Vec<&str> {
-    let mut v: Vec<&str> = Vec::new();
-    for r in rows {
-        if !v.contains(&r.scene.as_str()) {
-            v.push(&r.scene);
-        }
-    }
-    v
-}
-
-pub(super) fn uniq<'a>(rows: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
-    let mut v: Vec<&str> = Vec::new();
-    for r in rows {
-        if !v.contains(&r) {
-            v.push(r);
-        }
-    }
-    v
-}
 
 /// Bar groups (one per scene) of `value` for the rows `keep` selects, one bar per index.
 fn groups(
@@ -73,16 +52,23 @@ pub(super) fn write_plots(
     };
     let sets = uniq(rows.iter().map(|r| r.ray_set.as_str()));
     for set in &sets {
+        // A contender with wrong results is never drawn as fast: its rows stay out of the
+        // speed charts (the verdict shows their speed, marked wrong).
+        let timed = |r: &ResultRow| r.ray_set == *set && r.threads == min_threads;
+        let wrong = rows.iter().any(|r| timed(r) && r.wrong().is_some());
         draw(
-            format!("{set} rays: Mrays/s on {min_threads} thread(s)"),
+            format!(
+                "{set} rays: Mrays/s on {min_threads} thread(s){}",
+                if wrong {
+                    " (indices with wrong results left out)"
+                } else {
+                    ""
+                }
+            ),
             format!("mrays_{set}.svg"),
             "Mrays/s (log)",
             true,
-            groups(
-                rows,
-                |r| r.ray_set == *set && r.threads == min_threads,
-                |r| r.mrays_per_s,
-            ),
+            groups(rows, |r| timed(r) && r.wrong().is_none(), |r| r.mrays_per_s),
         )?;
     }
     let first_row = |r: &ResultRow| {
@@ -158,11 +144,4 @@ pub(super) fn write_plots(
         out.push((title.into(), "thread_scaling.svg".into()));
     }
     Ok(out)
-}
-
-pub(super) fn uniq_threads(rows: &[ResultRow]) -> Vec<usize> {
-    let mut t: Vec<usize> = rows.iter().map(|r| r.threads).collect();
-    t.sort_unstable();
-    t.dedup();
-    t
 }

@@ -7,10 +7,11 @@
 use super::cost_fit::{CostFit, cost_fits};
 use super::fixed as fmt_f;
 use super::html::write_html;
+use super::rows::{base_index, index_label, scenes, uniq, uniq_threads};
 pub use super::run_meta::{RunMeta, run_id_now};
 use super::run_notes::{PictureRef, RunNotes, pictures_markdown};
-use super::suite_plots::{scenes, uniq, uniq_threads, write_plots};
-use super::verdict::{index_label, verdicts};
+use super::suite_plots::write_plots;
+use super::verdict::{Verdict, verdicts};
 use super::{ReportError, write_csv};
 use crate::harness::suite::{ResultRow, SuiteResult};
 use std::fmt::Write as _;
@@ -105,10 +106,20 @@ fn by_index<'a>(rows: &[&'a ResultRow]) -> Vec<(String, Vec<&'a ResultRow>)> {
     v
 }
 
-/// Build time and memory per index of one scene.
+/// Build time and memory per index of one scene (an index's rows in other modes share its
+/// build: they are listed only for an index with no single row).
 fn build_table(rows: &[&ResultRow]) -> String {
+    let has_single = |r: &ResultRow| {
+        rows.iter()
+            .any(|o| o.mode == "single" && base_index(o) == base_index(r) && o.params == r.params)
+    };
+    let built: Vec<&ResultRow> = rows
+        .iter()
+        .copied()
+        .filter(|r| r.mode == "single" || !has_single(r))
+        .collect();
     let mut s = "| index | build ms | bytes/prim |\n|---|---:|---:|\n".to_owned();
-    for (name, rs) in by_index(rows) {
+    for (name, rs) in by_index(&built) {
         let r0 = rs[0];
         let per_prim = r0.memory_bytes as f64 / r0.primitives.max(1) as f64;
         let _ = writeln!(
@@ -121,38 +132,44 @@ fn build_table(rows: &[&ResultRow]) -> String {
     s
 }
 
-/// One ray set of one scene: a row per index with Mrays/s at each thread count, its ratio to
-/// the fastest index at the most threads, and tests and node steps per ray.
-fn set_table(rows: &[&ResultRow], threads: &[usize]) -> String {
+/// One ray set of one scene: a row per index with Mrays/s at each thread count, the 95%
+/// interval at the most threads, its share of the fastest correct index of its mode family at
+/// the most threads (`≈` a tie, `wrong N` for wrong results; [`Verdict::cell`]), and tests and
+/// node steps per ray.
+fn set_table(rows: &[&ResultRow], threads: &[usize], verdicts: &[&Verdict]) -> String {
     let most = threads.last().copied().unwrap_or(1);
-    let rate = |rs: &[&ResultRow], t: usize| {
-        rs.iter()
-            .find(|r| r.threads == t)
-            .map_or(f64::NAN, |r| r.mrays_per_s)
-    };
-    let indices = by_index(rows);
-    let best = indices
-        .iter()
-        .map(|(_, rs)| rate(rs, most))
-        .filter(|v| v.is_finite())
-        .fold(f64::NAN, f64::max);
+    fn at<'a>(rs: &[&'a ResultRow], t: usize) -> Option<&'a ResultRow> {
+        rs.iter().find(|r| r.threads == t).copied()
+    }
+    let rate = |rs: &[&ResultRow], t: usize| at(rs, t).map_or(f64::NAN, |r| r.mrays_per_s);
     let mut s = "| index |".to_owned();
     for t in threads {
         let _ = write!(s, " Mrays/s {t}t |");
     }
-    let _ = writeln!(s, " vs best ({most}t) | tests/ray | steps/ray |");
+    let _ = writeln!(
+        s,
+        " 95% interval ({most}t) | vs fastest ({most}t) | tests/ray | steps/ray |"
+    );
     s.push_str("|---");
-    s.push_str(&"|---:".repeat(threads.len() + 3));
+    s.push_str(&"|---:".repeat(threads.len() + 4));
     s.push_str("|\n");
-    for (name, rs) in &indices {
+    for (name, rs) in &by_index(rows) {
         let _ = write!(s, "| {name} |");
         for &t in threads {
             let _ = write!(s, " {} |", fmt_f(rate(rs, t), 2));
         }
+        let interval = at(rs, most).map_or("–".into(), |r| {
+            format!("{}–{}", fmt_f(r.mrays_ci_low, 2), fmt_f(r.mrays_ci_high, 2))
+        });
+        // The race the row runs in as itself (not as a stand-in).
+        let vs = verdicts
+            .iter()
+            .find(|v| v.get(name).is_some_and(|c| !c.stand_in))
+            .and_then(|v| v.cell(name))
+            .unwrap_or_else(|| "–".into());
         let _ = writeln!(
             s,
-            " {} | {} | {} |",
-            fmt_f(rate(rs, most) / best, 2),
+            " {interval} | {vs} | {} | {} |",
             fmt_f(rs[0].prim_tests_per_ray, 1),
             fmt_f(rs[0].node_visits_per_ray, 1)
         );
@@ -235,8 +252,15 @@ pub fn summary_markdown(
     let _ = writeln!(s, "# accelbench run {}\n", meta.run_id);
     let _ = writeln!(
         s,
-        "{} · git {} · {} ({} cores) · kernel {} · threads {:?} · {} timed repeats (median)\n",
-        meta.date, meta.git_revision, meta.cpu, meta.cores, meta.kernel, meta.threads, meta.repeats
+        "{} · git {} · {} ({} cores) · kernel {} · threads {:?} · {} timed repeats (median; {})\n",
+        meta.date,
+        meta.git_revision,
+        meta.cpu,
+        meta.cores,
+        meta.kernel,
+        meta.threads,
+        meta.repeats,
+        crate::harness::median_interval::describe(meta.repeats)
     );
     let _ = writeln!(s, "Command: `{}`\n", meta.command);
     if notes.peer_mismatch_total > 0 {
@@ -266,6 +290,7 @@ pub fn summary_markdown(
         );
     }
     let threads = uniq_threads(rows);
+    let all_verdicts = verdicts(rows);
     for scene in scenes(rows) {
         let rows: Vec<&ResultRow> = rows.iter().filter(|r| r.scene == scene).collect();
         let _ = writeln!(s, "## {scene} ({} primitives)\n", rows[0].primitives);
@@ -273,10 +298,14 @@ pub fn summary_markdown(
         for set in uniq(rows.iter().map(|r| r.ray_set.as_str())) {
             let in_set: Vec<&ResultRow> =
                 rows.iter().copied().filter(|r| r.ray_set == set).collect();
+            let races: Vec<&Verdict> = all_verdicts
+                .iter()
+                .filter(|v| v.scene == scene && v.ray_set == set)
+                .collect();
             let _ = writeln!(
                 s,
                 "### {scene}, {set} rays\n\n{}",
-                set_table(&in_set, &threads)
+                set_table(&in_set, &threads, &races)
             );
             s.push_str(&fallback_line(&in_set));
             s.push_str(&peer_line(&in_set));
@@ -316,6 +345,7 @@ mod tests {
             primitives: 10,
             index: index.into(),
             params: params.into(),
+            mode: "single".into(),
             ray_set: "primary".into(),
             rays: 100,
             threads: 1,
@@ -324,6 +354,8 @@ mod tests {
             trace_ms_median: 1.0,
             trace_ms_spread: 0.0,
             mrays_per_s: mrays,
+            mrays_ci_low: mrays,
+            mrays_ci_high: mrays,
             mtests_per_s: 1.0,
             prim_tests_per_ray: 1.0,
             node_visits_per_ray: 1.0,
@@ -351,10 +383,20 @@ mod tests {
             row("grid", "", 1.0),
         ];
         let refs: Vec<&ResultRow> = rows.iter().collect();
-        let table = set_table(&refs, &[1]);
-        assert!(table.contains("| bvh [a = 1] | 2.00 | 0.50 |"), "{table}");
-        assert!(table.contains("| bvh [a = 2] | 4.00 | 1.00 |"), "{table}");
-        assert!(table.contains("| grid | 1.00 | 0.25 |"), "{table}");
+        let v = verdicts(&rows);
+        let table = set_table(&refs, &[1], &v.iter().collect::<Vec<_>>());
+        assert!(
+            table.contains("| bvh [a = 1] | 2.00 | 2.00–2.00 | 0.50 |"),
+            "{table}"
+        );
+        assert!(
+            table.contains("| bvh [a = 2] | 4.00 | 4.00–4.00 | 1.00 |"),
+            "{table}"
+        );
+        assert!(
+            table.contains("| grid | 1.00 | 1.00–1.00 | 0.25 |"),
+            "{table}"
+        );
         assert_eq!(build_table(&refs).lines().count(), 5);
         let fits = cost_fits(&rows);
         assert_eq!(fits.len(), 3);

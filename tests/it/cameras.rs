@@ -7,7 +7,7 @@ use crate::common;
 use accelbench::camera::ModelKind;
 use accelbench::geometry::{Aabb, TriangleKernelKind};
 use accelbench::harness::verify::compare_indices;
-use accelbench::index::{IndexSpec, build_index, index_names, is_peer};
+use accelbench::index::{IndexSpec, TraceMode, build_index, index_names, is_peer};
 use accelbench::rays::{CAMERA_SET_SEED, camera_model_rays};
 use accelbench::scene::generators;
 
@@ -92,12 +92,15 @@ fn a_depth_of_field_render_is_byte_identical_through_every_index() {
         filter: Filter::Tent,
         camera: ModelKind::Dof,
         seed: 5,
+        mode: TraceMode::Single,
     };
     let kernel = TriangleKernelKind::Exact;
-    let render = |name: &str| {
+    let render_in = |name: &str, mode: TraceMode| {
         let index = build_index(&IndexSpec::named(name), &geom, kernel).unwrap();
+        let sampling = Sampling { mode, ..sampling };
         render_shaded_with(&scene, index.as_ref(), &opts, &sampling).unwrap()
     };
+    let render = |name: &str| render_in(name, TraceMode::Single);
     let reference = render("brute");
     let pinhole = {
         let index = build_index(&IndexSpec::named("bvh"), &geom, kernel).unwrap();
@@ -114,5 +117,14 @@ fn a_depth_of_field_render_is_byte_identical_through_every_index() {
             render(name).as_bytes() == reference.as_bytes(),
             "{name}: the dof render differs from brute force's"
         );
+    }
+    // Every trace mode renders the same image (`render --mode`).
+    for mode in [TraceMode::Stream, TraceMode::LastHit, TraceMode::Packets(8)] {
+        for name in ["bvh", "bvh8", "grid"] {
+            assert!(
+                render_in(name, mode).as_bytes() == reference.as_bytes(),
+                "{name} in {mode:?}: the dof render differs from brute force's"
+            );
+        }
     }
 }

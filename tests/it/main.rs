@@ -33,4 +33,5 @@ mod shard;
 mod stress;
 mod suite;
 mod surprises;
+mod verdict;
 mod wbvh;

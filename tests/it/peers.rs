@@ -14,7 +14,7 @@ use accelbench::harness::timing::Query;
 use accelbench::harness::verify::compare_closest;
 use accelbench::harness::workload::{self, RaySet, SetSizes};
 use accelbench::index::{
-    BuildError, IndexSpec, TraceIndex, build_index, build_index_on, is_peer, peer_names,
+    BuildError, IndexSpec, TraceIndex, TraceMode, build_index, build_index_on, is_peer, peer_names,
 };
 use accelbench::scene::{Scene, SceneGeometry, Triangles, generators};
 use indicatif::ProgressBar;
@@ -26,6 +26,10 @@ fn peers() -> Vec<&'static str> {
         .filter(|n| !n.starts_with("obvhs"))
         .collect()
 }
+
+/// The modes a peer is checked in: one query at a time, and its own batch technique (Embree's
+/// ray streams, `embree-p16`'s packets of 16).
+const MODES: [TraceMode; 2] = [TraceMode::Single, TraceMode::Stream];
 
 /// Embree's robust (watertight) scene, traced ray by ray or in packets of 16.
 fn robust_embree(name: &str) -> bool {
@@ -75,23 +79,25 @@ fn peers_trace_generated_triangle_scenes_close_to_brute_force() {
         for name in peers() {
             let index = build(name, &scene);
             assert!(index.info().memory_bytes > 0, "{name}: no memory reported");
-            let got = common::closest(index.as_ref(), &rays);
-            let what = format!("{name} on {}", scene.name);
-            let c = judge(&what, &scene, &rays, &expected, &got);
-            let got_aimed = common::closest(index.as_ref(), &aimed);
-            let c_aimed = judge(&what, &scene, &aimed, &expected_aimed, &got_aimed);
-            eprintln!("{what}: {c:?} of {hits} hits; aimed at vertices and edges: {c_aimed:?}");
-            if robust_embree(name) {
-                assert!(c.wrong * 100 <= hits, "{what}: {c:?} of {hits} hits");
+            for mode in MODES.into_iter().filter(|m| index.traces_in(*m)) {
+                let got = common::closest_in(index.as_ref(), mode, &rays);
+                let what = format!("{name} ({}) on {}", mode.label(), scene.name);
+                let c = judge(&what, &scene, &rays, &expected, &got);
+                let got_aimed = common::closest_in(index.as_ref(), mode, &aimed);
+                let c_aimed = judge(&what, &scene, &aimed, &expected_aimed, &got_aimed);
+                eprintln!("{what}: {c:?} of {hits} hits; aimed at vertices and edges: {c_aimed:?}");
+                if robust_embree(name) {
+                    assert!(c.wrong * 100 <= hits, "{what}: {c:?} of {hits} hits");
+                }
+                let mut any = vec![false; rays.len()];
+                index.any_hits_in(mode, &rays, &mut any, None);
+                let differ = any
+                    .iter()
+                    .zip(&got)
+                    .filter(|(a, g)| **a != g.is_some())
+                    .count();
+                assert_eq!(differ, 0, "{what}: any-hit disagrees with its closest hit");
             }
-            let mut any = vec![false; rays.len()];
-            index.any_hits(&rays, &mut any);
-            let differ = any
-                .iter()
-                .zip(&got)
-                .filter(|(a, g)| **a != g.is_some())
-                .count();
-            assert_eq!(differ, 0, "{what}: any-hit disagrees with its closest hit");
         }
     }
 }
@@ -115,17 +121,21 @@ fn embree_is_never_wrong_on_the_bunny_protocol_sets() {
     for (set, rays) in &sets {
         let expected = common::closest(reference.as_ref(), rays);
         for name in peers() {
-            let got = common::closest(build(name, &bunny).as_ref(), rays);
-            let c = judge(&format!("{name} {set}"), &bunny, rays, &expected, &got);
-            eprintln!("{name} on the bunny, {set}: {} rays, {c:?}", rays.len());
-            if robust_embree(name) {
-                assert_eq!(c.wrong, 0, "{name} {set}: {c:?}");
+            let index = build(name, &bunny);
+            for mode in MODES.into_iter().filter(|m| index.traces_in(*m)) {
+                let got = common::closest_in(index.as_ref(), mode, rays);
+                let what = format!("{name} ({}) {set}", mode.label());
+                let c = judge(&what, &bunny, rays, &expected, &got);
+                eprintln!("{what}, the bunny: {} rays, {c:?}", rays.len());
+                if robust_embree(name) {
+                    assert_eq!(c.wrong, 0, "{what}: {c:?}");
+                }
             }
         }
     }
 }
 
-/// `embree-p16` traces a batch in packets of 16 consecutive rays, the last packet of a batch
+/// `embree-p16` traces a batch (its stream mode) in packets of 16 consecutive rays, the last packet of a batch
 /// shorter (its missing lanes masked off): on 1007 rays (the last chunk of 64 is 47 rays: two
 /// packets and one of 15) every ray gets what it gets traced alone (a one-lane packet), so no
 /// lane depends on its neighbours or on the mask; any-hit, also in packets, agrees with closest
@@ -136,7 +146,7 @@ fn embree_p16_packet_lanes_match_rays_traced_alone() {
     let scene = generators::generate("icosphere", 2000, 3).unwrap();
     let rays = &common::bunny_protocol_sample(&scene)[..1007];
     let p16 = build("embree-p16", &scene);
-    let got = common::closest(p16.as_ref(), rays);
+    let got = common::closest_in(p16.as_ref(), TraceMode::Stream, rays);
     let hits = got.iter().flatten().count();
     assert!(
         hits > 100 && hits < rays.len(),
@@ -144,7 +154,7 @@ fn embree_p16_packet_lanes_match_rays_traced_alone() {
         rays.len()
     );
     for (i, g) in got.iter().enumerate() {
-        let alone = common::closest(p16.as_ref(), &rays[i..=i])[0];
+        let alone = common::closest_in(p16.as_ref(), TraceMode::Stream, &rays[i..=i])[0];
         assert_eq!(
             g.map(|h| (h.prim, h.t.to_bits())),
             alone.map(|h| (h.prim, h.t.to_bits())),
@@ -153,7 +163,7 @@ fn embree_p16_packet_lanes_match_rays_traced_alone() {
         );
     }
     let mut any = vec![false; rays.len()];
-    p16.any_hits(rays, &mut any);
+    p16.any_hits_in(TraceMode::Stream, rays, &mut any, None);
     let any_of_closest: Vec<bool> = got.iter().map(Option::is_some).collect();
     assert_eq!(any, any_of_closest);
     let short: Vec<Ray> = rays
@@ -164,7 +174,7 @@ fn embree_p16_packet_lanes_match_rays_traced_alone() {
             Ray::new(r.origin.into(), r.dir.into(), r.t_min, t_max).unwrap()
         })
         .collect();
-    p16.any_hits(&short, &mut any);
+    p16.any_hits_in(TraceMode::Stream, &short, &mut any, None);
     // Nothing lies closer than the closest hit.
     assert_eq!(any.iter().filter(|&&a| a).count(), 0);
 }
@@ -185,7 +195,7 @@ fn config(indices: &[&str], sets: Vec<RaySet>) -> SuiteConfig {
         brute_timing_budget: 0,
         timed: true,
         shard: Shard::WHOLE,
-        modes: Vec::new(),
+        modes: vec![accelbench::index::TraceMode::Single],
     }
 }
 
@@ -194,13 +204,34 @@ fn suite_rows_of_peers_have_ties_and_wrong_and_no_counters() {
     let scene = generators::generate("icosphere", 2000, 3).unwrap();
     let mut names = vec!["bvh"];
     names.extend(peers());
-    let cfg = config(&names, RaySet::ALL.to_vec());
-    let res = run_suite(&[scene], &cfg, &ProgressBar::hidden()).unwrap();
+    let mut cfg = config(&names, RaySet::ALL.to_vec());
+    cfg.modes = MODES.to_vec();
+    let res = run_suite(std::slice::from_ref(&scene), &cfg, &ProgressBar::hidden()).unwrap();
     assert_eq!(res.mismatch_total, 0, "{:?}", res.mismatches.first());
     assert!(res.notes.is_empty(), "{:?}", res.notes);
-    assert_eq!(res.rows.len(), names.len() * RaySet::ALL.len());
+    // A row per set in every mode the index traces: `+stream` only with a batch technique of
+    // its own, and `embree-p16` (a batch technique over `embree`'s single rays) only there.
+    let mut want = 0;
+    for name in &names {
+        let index = build(name, &scene);
+        for mode in MODES.into_iter().filter(|m| index.traces_in(*m)) {
+            let label = match mode {
+                TraceMode::Single => name.to_string(),
+                m => format!("{name}+{}", m.label()),
+            };
+            let rows = res.rows.iter().filter(|r| r.index == label);
+            assert!(rows.clone().all(|r| r.mode == mode.label()), "{label}");
+            assert_eq!(rows.count(), RaySet::ALL.len(), "{label}");
+            want += RaySet::ALL.len();
+        }
+    }
+    assert_eq!(res.rows.len(), want);
+    if names.contains(&"embree-p16") {
+        assert!(res.rows.iter().all(|r| r.index != "embree-p16"));
+        assert!(res.rows.iter().any(|r| r.index == "embree+stream"));
+    }
     for r in &res.rows {
-        if is_peer(&r.index) {
+        if is_peer(r.index.split('+').next().unwrap()) {
             let (ties, t_off) = (r.peer_ties.unwrap(), r.peer_t_off.unwrap());
             assert!(
                 ties + t_off + r.peer_wrong.unwrap() <= r.mismatches,

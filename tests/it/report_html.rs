@@ -58,11 +58,16 @@ fn verdict_matrix_matches_results_csv() {
     // What results.csv says, per (scene, set) at the most threads: index -> Mrays/s.
     let most = rows.iter().map(|r| r.threads).max().unwrap();
     let mut expected: HashMap<(String, String), HashMap<String, f64>> = HashMap::new();
+    let mut ci: HashMap<(String, String), HashMap<String, (f64, f64)>> = HashMap::new();
     for r in rows.iter().filter(|r| r.threads == most) {
+        let key = (r.scene.clone(), r.ray_set.clone());
         expected
-            .entry((r.scene.clone(), r.ray_set.clone()))
+            .entry(key.clone())
             .or_default()
             .insert(r.index.clone(), r.mrays_per_s);
+        ci.entry(key)
+            .or_default()
+            .insert(r.index.clone(), (r.mrays_ci_low, r.mrays_ci_high));
     }
     let table_rows: Vec<_> = page.select(&sel("table#verdict tr[data-scene]")).collect();
     assert_eq!(
@@ -72,11 +77,14 @@ fn verdict_matrix_matches_results_csv() {
     );
     for tr in table_rows {
         let attr = |k: &str| tr.value().attr(k).unwrap().to_owned();
-        let speeds = &expected[&(attr("data-scene"), attr("data-set"))];
+        let key = (attr("data-scene"), attr("data-set"));
+        let (speeds, intervals) = (&expected[&key], &ci[&key]);
+        // No index here has a batch mode of its own: one race per set, one query at a time.
+        assert_eq!(attr("data-family"), "one at a time");
         assert_eq!(attr("data-threads"), most.to_string());
         let best = speeds.values().copied().fold(f64::NAN, f64::max);
-        let fastest = speeds.iter().find(|(_, v)| **v == best).unwrap().0;
-        assert_eq!(&attr("data-fastest"), fastest);
+        let fastest = speeds.iter().find(|(_, v)| **v == best).unwrap().0.clone();
+        assert_eq!(attr("data-fastest"), fastest);
         let cells: Vec<_> = tr.select(&sel("td.ratio")).collect();
         assert_eq!(cells.len(), speeds.len(), "a cell per index with a row");
         for td in cells {
@@ -85,7 +93,17 @@ fn verdict_matrix_matches_results_csv() {
             let want = speeds[index] / best;
             assert_eq!(ratio, want, "{index}");
             let text: String = td.text().collect();
-            assert_eq!(text, format!("{want:.2}"));
+            // A tie (the intervals overlap the fastest's) reads `≈ 0.98`, in the fastest's colour.
+            let tie = td.value().attr("class") == Some("ratio tie");
+            let (lo, hi) = intervals[index];
+            let (wlo, whi) = intervals[fastest.as_str()];
+            assert_eq!(tie, index != fastest && hi >= wlo && whi >= lo, "{index}");
+            let shown = if tie {
+                format!("≈ {want:.2}")
+            } else {
+                format!("{want:.2}")
+            };
+            assert_eq!(text, shown);
             assert!(td.value().attr("style").unwrap().contains("hsl("));
         }
     }

@@ -31,7 +31,7 @@ pub(crate) fn config(indices: &[&str]) -> SuiteConfig {
         brute_timing_budget: u64::MAX,
         timed: true,
         shard: Shard::WHOLE,
-        modes: Vec::new(),
+        modes: vec![accelbench::index::TraceMode::Single],
     }
 }
 
@@ -256,6 +256,12 @@ impl TraceIndex for Logged {
     }
     fn info(&self) -> &accelbench::index::IndexInfo {
         self.inner.info()
+    }
+    fn has_stream(&self) -> bool {
+        self.inner.has_stream()
+    }
+    fn has_single(&self) -> bool {
+        self.inner.has_single()
     }
     fn closest_hit(&self, ray: &Ray) -> Option<accelbench::geometry::Hit> {
         self.inner.closest_hit(ray)

@@ -209,7 +209,7 @@ fn chunks_trace_like_single_rays() {
     for chunk in rays.chunks(63) {
         let mut got = vec![None; chunk.len()];
         let mut counted = vec![Counters::default(); chunk.len()];
-        index.closest_hits_chunk(&geom, chunk, &mut got, &mut counted);
+        index.closest_hits_stream(&geom, chunk, &mut got, &mut counted);
         for (i, ray) in chunk.iter().enumerate() {
             let mut c = Counters::default();
             let want = index.closest_hit(&geom, ray, &mut c);

@@ -2,7 +2,9 @@
 //! behind our [`Index`] trait: `embree` (build quality medium, `RTC_SCENE_FLAG_ROBUST`, i.e.
 //! watertight traversal, the fair match for our default exact kernel) and `embree-fast` (the
 //! same without the robust flag: Embree's default). One `rtcIntersect1` per closest-hit query,
-//! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]).
+//! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]); in the
+//! `stream` mode each chunk of the batch is one `rtcIntersect1M` / `rtcOccluded1M` ray stream
+//! ([`stream`]).
 //! `embree-p16` ([`packet16`]) traces the robust scene 16 consecutive rays at a time.
 //!
 //! Embree tests the triangles itself, so its hits are not bit for bit ours: the suite classifies
@@ -13,6 +15,7 @@
 mod device;
 mod packet16;
 mod rtc_ray;
+mod stream;
 
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
@@ -158,6 +161,29 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
         let mut slot = MaybeUninit::uninit();
         let r = rtc_ray::init_ray(&mut slot, ray);
         self.scene.occluded(&mut IntersectContext::incoherent(), r)
+    }
+
+    const STREAM: bool = true;
+
+    /// The chunk as one Embree ray stream ([`stream`]).
+    fn closest_hits_stream<G: Geometry, S: Stats>(
+        &self,
+        _: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        _: &mut [S],
+    ) {
+        stream::closest_hits(&self.scene, rays, out);
+    }
+
+    fn any_hits_stream<G: Geometry, S: Stats>(
+        &self,
+        _: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        _: &mut [S],
+    ) {
+        stream::any_hits(&self.scene, rays, out);
     }
 
     fn info(&self) -> IndexInfo {

@@ -1,12 +1,14 @@
 //! `embree-p16`: the robust Embree scene of `embree` traced 16 consecutive rays at a time with
 //! `rtcIntersect16` / `rtcOccluded16`, to show what Embree's packets give on coherent rays.
 //!
-//! The harness hands every worker chunks of consecutive rays ([`Index::closest_hits_chunk`]); a
+//! Its rows are stream rows only (`embree-p16+stream`, [`Index::SINGLE`] is false: its single
+//! rays would be `embree`'s). The harness hands every worker chunks of consecutive rays
+//! ([`Index::closest_hits_stream`]); a
 //! chunk is cut into packets of 16 (the last one of a batch shorter, its missing lanes switched
 //! off in the valid mask). Primary rays are row-major, and chunks (64 rays) and rows (a multiple
 //! of 16 pixels at the protocol's sizes) start on a multiple of 16, so a packet is a segment of
-//! one image row. Single rays (`--last-hit`, `--packets`, renders) go through `rtcIntersect1`
-//! as in `embree`.
+//! one image row. Single rays (`--modes single,last-hit,packets8`, renders) go through
+//! `rtcIntersect1` as in `embree`.
 //!
 //! Embree's packet kernels test the triangles with the same robust algorithm, lane by lane, but
 //! are not bound by our hit contract: disagreements with brute force are classified like every
@@ -70,7 +72,10 @@ impl Index for EmbreeP16 {
         self.0.info()
     }
 
-    fn closest_hits_chunk<G: Geometry, S: Stats>(
+    const STREAM: bool = true;
+    const SINGLE: bool = false;
+
+    fn closest_hits_stream<G: Geometry, S: Stats>(
         &self,
         _: &G,
         rays: &[Ray],
@@ -99,7 +104,7 @@ impl Index for EmbreeP16 {
         }
     }
 
-    fn any_hits_chunk<G: Geometry, S: Stats>(
+    fn any_hits_stream<G: Geometry, S: Stats>(
         &self,
         _: &G,
         rays: &[Ray],

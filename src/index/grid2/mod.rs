@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 
 /// Default top-level density (cells per primitive): coarse, so the top walk crosses empty space
 /// in few steps and the inner grids do the fine work. Chosen by `sweep grid2` and suite runs
-/// over 1/128 to 1/4 (README, "Sweeps"): 1/64 was fastest on `stadium` (0.62-0.67x `bvh` on
+/// over 1/128 to 1/4 (docs/sweeps.md): 1/64 was fastest on `stadium` (0.62-0.67x `bvh` on
 /// primary rays against 0.45x at 1/16) and no worse on the bunny.
 pub const DEFAULT_TOP_LAMBDA: f32 = 1.0 / 64.0;
 /// Default density of each top cell's own grid (cells per primitive of that cell).

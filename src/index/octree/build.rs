@@ -26,7 +26,7 @@ pub const MAX_NODES: usize = 1 << 24;
 #[serde(deny_unknown_fields, default)]
 pub struct OctreeParams {
     /// A cell holding more primitives than this is subdivided (at least 1). The default, 16, was
-    /// chosen by `sweep octree` and suite runs (README, "Sweeps"): against 8 it halves the nodes
+    /// chosen by `sweep octree` and suite runs (docs/sweeps.md): against 8 it halves the nodes
     /// on `flat` (whose leaves straddle many triangle edges) and the walk's cache misses with
     /// them, for about 2 more tests per ray.
     pub max_prims: usize,

@@ -86,10 +86,12 @@ impl<const C: usize> Index for WideBvh<C> {
 
     walk::tree_queries!();
 
+    const STREAM: bool = true;
+
     /// Several walks at a time: chunks of camera-like rays in lockstep pairs of neighbours,
     /// other chunks three walks at a time, each refilled as it finishes ([`walk::coherent`],
     /// [`walk::closest_hits_lockstep`], [`walk::closest_hits_interleaved`]).
-    fn closest_hits_chunk<G: Geometry, S: super::Stats>(
+    fn closest_hits_stream<G: Geometry, S: super::Stats>(
         &self,
         geom: &G,
         rays: &[crate::geometry::Ray],

@@ -212,8 +212,17 @@ pub fn build(spec: &str, scene: &Scene, kernel: TriangleKernelKind) -> Box<dyn T
 
 /// The closest hits of `rays` through `index`.
 pub fn closest(index: &dyn TraceIndex, rays: &[Ray]) -> Vec<Option<Hit>> {
+    closest_in(index, accelbench::index::TraceMode::Single, rays)
+}
+
+/// [`closest`] traced in `mode`.
+pub fn closest_in(
+    index: &dyn TraceIndex,
+    mode: accelbench::index::TraceMode,
+    rays: &[Ray],
+) -> Vec<Option<Hit>> {
     let mut out = vec![None; rays.len()];
-    index.closest_hits(rays, &mut out);
+    index.closest_hits_in(mode, rays, &mut out, None);
     out
 }
 
