@@ -38,6 +38,7 @@ fn untimed(r: &ResultRow) -> String {
     let mut r = r.clone();
     (r.build_ms, r.trace_ms_median, r.trace_ms_spread) = (0.0, 0.0, 0.0);
     (r.mrays_per_s, r.mtests_per_s) = (0.0, 0.0);
+    (r.mrays_ci_low, r.mrays_ci_high) = (0.0, 0.0);
     format!("{r:?}")
 }
 
