@@ -99,7 +99,14 @@ fn a_distance_beyond_f32_is_a_miss_for_every_index() {
                 "{kernel}: {ray:?} gave {t:?}"
             );
         }
+        // Our indices only: the contract is ours, and a C peer (tinybvh, Embree) given these
+        // denormal directions may crash the process, which nothing can contain.
         let rays: Vec<Ray> = far.iter().chain(&near).copied().collect();
-        assert_every_index_agrees(&scene, kernel, &rays);
+        let geom = scene.geometry();
+        for name in index_names().into_iter().filter(|n| !is_peer(n)) {
+            let index = build_index(&IndexSpec::named(name), &geom, kernel).unwrap();
+            let m = compare_indices(brute.as_ref(), index.as_ref(), &rays);
+            assert!(m.is_empty(), "{name} ({kernel}): {:?}", m.first());
+        }
     }
 }
