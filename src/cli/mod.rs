@@ -29,6 +29,7 @@ mod info;
 mod merge;
 mod rays;
 mod render;
+mod report;
 mod run;
 mod scale;
 mod stress;
@@ -81,6 +82,8 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Combine the report folders of `run --shard K/N` (every K) into one report.
     Merge(merge::MergeArgs),
+    /// A report folder's dated results page in Markdown, for docs/results/.
+    Report(report::ReportArgs),
 }
 
 /// Runs the command line; errors print as `error: ...` with their causes and exit non-zero.
@@ -104,6 +107,7 @@ pub fn main() -> ExitCode {
         Command::Stress(a) => stress::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Merge(a) => merge::run(a),
+        Command::Report(a) => report::run(a),
     };
     let result = result.and_then(|()| out::flush_stdout());
     match result {

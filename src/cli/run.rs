@@ -4,6 +4,7 @@
 use super::parse_threads;
 use super::suite_args::SuiteArgs;
 use crate::harness::suite::{check_specs, run_suite_with};
+use crate::harness::workload::RaySet;
 use crate::index::{TraceIndex, build_index};
 use crate::render::{Picture, RenderOptions, write_scene_pictures};
 use crate::report::run_notes::PictureRef;
@@ -19,9 +20,14 @@ use std::path::PathBuf;
 pub struct RunArgs {
     #[command(flatten)]
     suite: SuiteArgs,
-    /// Thread counts, comma-separated [default: 1 and all cores].
+    /// Thread counts, comma-separated [default: all cores; with --full 1 and all cores].
     #[arg(long, value_delimiter = ',', value_parser = parse_threads)]
     threads: Vec<usize>,
+    /// The thorough configuration: all eight ray sets (ambient occlusion and the camera models
+    /// too) at 1 thread and at all cores, about four times the default run's work (primary,
+    /// shadow, diffuse and incoherent rays at all cores). --rays and --threads still choose.
+    #[arg(long, conflicts_with = "quick")]
+    full: bool,
     /// Timed repeats per measurement: the median is reported with its interval, which covers
     /// the median with at least 95% from 6 repeats on [default: 6, quick 3].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1000))]
@@ -49,12 +55,14 @@ pub(crate) fn progress_bar(quiet: bool) -> ProgressBar {
     pb
 }
 
-/// The default thread counts: 1 and all cores.
-pub(crate) fn default_threads(given: &[usize]) -> Vec<usize> {
-    let mut t = if given.is_empty() {
+/// The thread counts of a run: those given, else all cores, and with `full` also 1.
+fn default_threads(given: &[usize], full: bool) -> Vec<usize> {
+    let mut t = if !given.is_empty() {
+        given.to_vec()
+    } else if full {
         vec![1, rayon::current_num_threads()]
     } else {
-        given.to_vec()
+        vec![rayon::current_num_threads()]
     };
     t.sort_unstable();
     t.dedup();
@@ -126,11 +134,16 @@ impl ScenePictures {
     }
 }
 
-pub fn run(a: RunArgs) -> anyhow::Result<()> {
+pub fn run(mut a: RunArgs) -> anyhow::Result<()> {
     let repeats = a
         .repeats
         .map_or(if a.suite.quick { 3 } else { 6 }, |r| r as usize);
-    let cfg = a.suite.config(default_threads(&a.threads), repeats, true)?;
+    if a.suite.rays.is_empty() && !a.full {
+        a.suite.rays = RaySet::FIRST_RUN.to_vec();
+    }
+    let cfg = a
+        .suite
+        .config(default_threads(&a.threads, a.full), repeats, true)?;
     let run_id = format!(
         "{}{}",
         run_id_now(),

@@ -19,7 +19,8 @@ pub struct SuiteArgs {
     /// Indices, comma-separated, with optional parameters (`bvh,grid:lambda=4`) [default: all].
     #[arg(long)]
     pub indices: Option<String>,
-    /// Ray sets, comma-separated [default: all].
+    /// Ray sets, comma-separated [default: all; `run` without --full: primary, shadow,
+    /// diffuse, incoherent].
     #[arg(long, value_enum, value_delimiter = ',')]
     pub rays: Vec<RaySet>,
     /// A small, fast configuration (under 2 minutes on 2 cores): smaller built-in scenes and

@@ -38,11 +38,21 @@ pub(super) struct SetRun<'a> {
 struct Tally<'a> {
     scene: &'a str,
     index: &'a str,
+    /// The mode traced: a mismatch names its row, `INDEX+MODE` ([`row_label`]).
+    mode: TraceMode,
     set: RaySet,
     query: Query,
     count: usize,
     /// Peers only: their disagreements with brute force, classified.
     peer: Option<PeerCounts>,
+}
+
+/// A row's index label: the index's name in `single` mode, `INDEX+MODE` otherwise.
+fn row_label(index: &str, mode: TraceMode) -> String {
+    match mode {
+        TraceMode::Single => index.to_owned(),
+        m => format!("{index}+{}", m.label()),
+    }
 }
 
 impl Tally<'_> {
@@ -61,7 +71,7 @@ impl Tally<'_> {
                 .take(KEEP_PER_PAIR)
                 .map(|mismatch| MismatchRecord {
                     scene: self.scene.to_owned(),
-                    index: self.index.to_owned(),
+                    index: row_label(self.index, self.mode),
                     ray_set: self.set,
                     against: against.to_owned(),
                     mismatch,
@@ -236,10 +246,7 @@ pub(super) fn run_set<'a>(
             exact_fallbacks: entry.exact_fallbacks,
             peer: entry.tally.peer,
         };
-        let label = match entry.mode {
-            TraceMode::Single => entry.index.name().to_owned(),
-            m => format!("{}+{}", entry.index.name(), m.label()),
-        };
+        let label = row_label(entry.index.name(), entry.mode);
         for (threads, timing) in timings {
             let mut row = result_row(&run, entry.index, &counts, threads, timing, cfg);
             row.index.clone_from(&label);
@@ -298,6 +305,7 @@ fn count_mode<'a>(
     let mut tally = Tally {
         scene: &run.scene.name,
         index: index.name(),
+        mode,
         set: run.set,
         query,
         count: 0,

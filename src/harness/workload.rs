@@ -34,6 +34,16 @@ pub enum RaySet {
 }
 
 impl RaySet {
+    /// The sets of a default `accelbench run` (without `--full` or `--rays`): camera rays, and
+    /// the shadow, diffuse-bounce and incoherent rays that follow from them, the kinds a
+    /// renderer traces most; `--full` adds ambient occlusion and the three camera models.
+    pub const FIRST_RUN: [RaySet; 4] = [
+        RaySet::Primary,
+        RaySet::Shadow,
+        RaySet::Diffuse,
+        RaySet::Incoherent,
+    ];
+
     pub const ALL: [RaySet; 8] = [
         RaySet::Primary,
         RaySet::Shadow,

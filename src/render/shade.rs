@@ -73,27 +73,36 @@ pub fn render_shaded_with(
     rows.into_par_iter().enumerate().for_each(|(j, row)| {
         let j = j as u32;
         let pixel = |i: u32| j as u64 * width as u64 + i as u64;
-        // The row's camera rays (those the model can make), traced as one batch in the mode.
-        let samples = (0..width).flat_map(|i| (0..spp).map(move |k| (i, k)));
-        let rays: Vec<Ray> = samples
-            .filter_map(|(i, k)| model.ray(&cam, &sampling.sample(i, j, pixel(i), k).0).ok())
-            .collect();
+        // The row's camera rays (those the model can make), traced as one batch in the mode;
+        // per sample its filter weight and whether the model made its ray.
+        let mut rays: Vec<Ray> = Vec::with_capacity((width * spp) as usize);
+        let mut samples: Vec<(f32, bool)> = Vec::with_capacity((width * spp) as usize);
+        for i in 0..width {
+            for k in 0..spp {
+                let (s, w) = sampling.sample(i, j, pixel(i), k);
+                let ray = model.ray(&cam, &s).ok();
+                samples.push((w, ray.is_some()));
+                rays.extend(ray);
+            }
+        }
         let mut hits = vec![None; rays.len()];
         index.closest_hits_in(sampling.mode, &rays, &mut hits, None);
         let mut traced = rays.iter().zip(hits);
+        let mut samples = samples.into_iter();
         for (i, px) in row.chunks_exact_mut(3).enumerate() {
             let i = i as u32;
             let (mut sum, mut weights) = (Vec3::ZERO, 0.0);
             for k in 0..spp {
-                let (s, w) = sampling.sample(i, j, pixel(i), k);
-                let colour = match model.ray(&cam, &s) {
-                    Ok(_) => match traced.next().expect("one answer per ray") {
+                let (w, made) = samples.next().expect("one sample per pixel and k");
+                let colour = if made {
+                    match traced.next().expect("one answer per ray") {
                         (ray, Some(hit)) => {
                             shader.shade(ray, hit, pixel(i) * spp as u64 + k as u64)
                         }
                         (_, None) => BACKGROUND,
-                    },
-                    Err(_) => BACKGROUND,
+                    }
+                } else {
+                    BACKGROUND
                 };
                 sum += colour * w;
                 weights += w;

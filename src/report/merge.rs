@@ -34,7 +34,9 @@ fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, ReportErr
     let text = std::fs::read_to_string(path).map_err(|e| {
         read_err(
             path,
-            format!("{e}; give report folders of `accelbench run --shard K/N`"),
+            format!(
+                "{e}; give a report folder written by `accelbench run` (to merge: one per shard of `run --shard K/N`)"
+            ),
         )
     })?;
     serde_json::from_str(&text).map_err(|e| read_err(path, e.to_string()))

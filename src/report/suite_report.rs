@@ -289,6 +289,22 @@ pub fn summary_markdown(
             notes.mismatch_total
         );
     }
+    s.push_str(&scenes_markdown(rows, notes, fits));
+    if !plots.is_empty() {
+        let _ = writeln!(s, "## Plots\n");
+        for (title, file) in plots {
+            let _ = writeln!(s, "### {title}\n\n![{title}]({file})\n");
+        }
+    }
+    s.push_str(&pictures_markdown(notes));
+    s
+}
+
+/// Per scene: the build table, each ray set's table with its verdict, the verification and the
+/// notes; then the cost fits. The body of `summary.md` and of a dated results page
+/// ([`super::results_page`]).
+pub fn scenes_markdown(rows: &[ResultRow], notes: &RunNotes, fits: &[CostFit]) -> String {
+    let mut s = String::new();
     let threads = uniq_threads(rows);
     let all_verdicts = verdicts(rows);
     for scene in scenes(rows) {
@@ -325,13 +341,6 @@ pub fn summary_markdown(
         }
     }
     s.push_str(&cost_table(fits));
-    if !plots.is_empty() {
-        let _ = writeln!(s, "## Plots\n");
-        for (title, file) in plots {
-            let _ = writeln!(s, "### {title}\n\n![{title}]({file})\n");
-        }
-    }
-    s.push_str(&pictures_markdown(notes));
     s
 }
 

@@ -28,6 +28,7 @@ mod protocol;
 mod reliability;
 mod render;
 mod report_html;
+mod results_page;
 mod shapes;
 mod shard;
 mod stress;

@@ -10,7 +10,7 @@ use accelbench::harness::suite::SuiteResult;
 use accelbench::index::{BuildError, Index, IndexInfo, IndexSpec, Stats, TraceIndex};
 use accelbench::index::{build_index, build_index_on};
 use accelbench::scene::{Geometry, SceneGeometry, Triangles, generators};
-use common::drop_one::NoParams;
+use common::drop_one::{NoParams, closest_skipping};
 
 /// Brute force that panics in every trace, or with `TIMED_ONLY` only in uncounted ones (the
 /// suite's timed passes; its counting passes count).
@@ -24,17 +24,7 @@ impl<const TIMED_ONLY: bool> Index for PanicsOnTrace<TIMED_ONLY> {
     fn closest_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> Option<Hit> {
         let uncounted = std::any::type_name::<S>().ends_with("NoStats");
         assert!(TIMED_ONLY && !uncounted, "injected trace fault");
-        let mut best: Option<Hit> = None;
-        for prim in 0..g.len() as u32 {
-            s.prim_test();
-            if let Some(t) = g.intersect(prim, ray, ray.t_max) {
-                let h = Hit { t, prim };
-                if best.is_none_or(|b| h.is_closer_than(&b)) {
-                    best = Some(h);
-                }
-            }
-        }
-        best
+        closest_skipping(g, ray, s, None)
     }
     fn any_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> bool {
         self.closest_hit(g, ray, s).is_some()

@@ -3,6 +3,7 @@
 //! interleaves, and every mode returns brute force's hits.
 
 use crate::common;
+use common::drop_one::NoParams;
 
 use accelbench::geometry::triangle::Exact;
 use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
@@ -24,9 +25,6 @@ use std::sync::{Arc, Mutex};
 /// The name the blind contender runs under: a registered peer, so the suite classifies its
 /// disagreements instead of failing the run.
 const BLIND: &str = "obvhs-cwbvh";
-
-#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
-struct NoParams {}
 
 /// A contender that answers "miss" at once for every ray: faster than any real index, and wrong
 /// on every ray that hits.

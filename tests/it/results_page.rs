@@ -1,0 +1,66 @@
+//! `accelbench report DIR --markdown`: a report folder's dated results page names the machine,
+//! the command and the commit of its run and holds its verdict and tables; a folder that is not
+//! a report is refused with the missing file named.
+
+use crate::common::cli::accelbench;
+
+#[test]
+fn a_report_folder_becomes_a_dated_results_page() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let o = accelbench(&[
+        "run",
+        "--quick",
+        "--quiet",
+        "--scenes",
+        "icosphere:n=300",
+        "--indices",
+        "bvh,grid",
+        "--rays",
+        "primary",
+        "--threads",
+        "1",
+        "--repeats",
+        "1",
+        "--picture-size",
+        "16",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let page_file = dir.path().join("page.md");
+    let o = accelbench(&[
+        "report",
+        out.to_str().unwrap(),
+        "--markdown",
+        "--title",
+        "a small sphere",
+        "--out",
+        page_file.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let page = std::fs::read_to_string(&page_file).unwrap();
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
+    let day = &meta["date"].as_str().unwrap()[..10];
+    assert!(
+        page.starts_with(&format!("# {day}: a small sphere\n")),
+        "{page}"
+    );
+    for fact in ["cpu", "command", "git_revision"] {
+        let value = meta[fact].as_str().unwrap();
+        assert!(
+            page.contains(value),
+            "the page lacks the run's {fact} '{value}':\n{page}"
+        );
+    }
+    assert!(page.contains("## Verdict"), "{page}");
+    assert!(page.contains("### icosphere"), "{page}");
+    assert!(page.contains("| `bvh`") || page.contains("| bvh"), "{page}");
+
+    let o = accelbench(&["report", out.to_str().unwrap()]);
+    assert!(!o.status.success(), "a page without a format was written");
+    let o = accelbench(&["report", dir.path().to_str().unwrap(), "--markdown"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("results.csv"), "{err}");
+}
