@@ -1,7 +1,7 @@
 //! A faulty index for tests of the verification: brute force that never reports one primitive.
 
 use accelbench::geometry::{Hit, Ray};
-use accelbench::index::{BuildError, Index, IndexInfo, Stats};
+use accelbench::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use accelbench::scene::Geometry;
 
 #[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
@@ -36,3 +36,5 @@ impl Index for DropOne {
         IndexInfo::default()
     }
 }
+
+impl BatchIndex for DropOne {}
