@@ -2,6 +2,21 @@
 //! check every point returns the same hits, and write a CSV and charts against the swept value.
 //! Generic over the index: a point is an x value and an [`IndexSpec`] (`grid:res=[64,64,64]`,
 //! `octree:max_depth=12`), grouped into named series (one line per series in the charts).
+//! Each index's plan (its points, the charts' axes and marker, its default) is a file here
+//! ([`grid_plan`], [`grid2_plan`], [`octree_plan`], [`bvh_plan`]); `accelbench sweep` only
+//! reads the arguments and calls one.
+
+mod bvh;
+mod grid;
+mod grid2;
+mod octree;
+mod plan;
+
+pub use bvh::bvh_plan;
+pub use grid::grid_plan;
+pub use grid2::grid2_plan;
+pub use octree::octree_plan;
+pub use plan::{SweepPlan, SweepPlot};
 
 use super::timing::{Query, counting_pass, timed_pass};
 use super::verify::{Mismatch, compare_closest};
