@@ -25,15 +25,14 @@ pub fn bvh_plan(
         }
     }
     let default_budget = BvhParams::default().config()?.split_budget;
-    let plot = SweepPlot {
-        title: format!("spatial splits on {}, {rays} rays", scene.name),
-        x_label: "references per primitive at most (split_budget)".into(),
-        log_x: true,
-        marker: Some((
+    let plot = SweepPlot::log_x(
+        format!("spatial splits on {}, {rays} rays", scene.name),
+        "references per primitive at most (split_budget)",
+        (
             default_budget.into(),
             format!("default (split_budget={default_budget})"),
-        )),
-    };
+        ),
+    );
     Ok(SweepPlan {
         index: "bvh".into(),
         size_label: "nodes",

@@ -46,15 +46,14 @@ pub fn grid_plan(
             spec: format!("grid:lambda={l}").parse()?,
         });
     }
-    let plot = SweepPlot {
-        title: format!("grid on {}, {rays} rays", scene.name),
-        x_label: "cells along the longest axis".into(),
-        log_x: true,
-        marker: Some((
+    let plot = SweepPlot::log_x(
+        format!("grid on {}, {rays} rays", scene.name),
+        "cells along the longest axis",
+        (
             heuristic as f64,
             format!("heuristic (lambda={DEFAULT_LAMBDA})"),
-        )),
-    };
+        ),
+    );
     Ok(SweepPlan {
         index: "grid".into(),
         size_label: "cells",

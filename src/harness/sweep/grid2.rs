@@ -1,6 +1,7 @@
 //! The two-level grid's sweep: one line per top-grid density, against the inner density.
 
-use super::{SweepPlan, SweepPlot, SweepPoint};
+use super::plan::crossed;
+use super::{SweepPlan, SweepPlot};
 use crate::index::{BuildError, Grid2Params, IndexSpec};
 use crate::scene::Scene;
 
@@ -13,25 +14,15 @@ pub fn grid2_plan(
     lambda: &[f32],
 ) -> Result<SweepPlan, BuildError> {
     let d = Grid2Params::default();
-    let mut points: Vec<SweepPoint> = Vec::new();
-    for &top in top_lambda {
-        for &l in lambda {
-            points.push(SweepPoint {
-                series: format!("top_lambda={top}"),
-                x: l as f64,
-                spec: format!("grid2:top_lambda={top},lambda={l}").parse()?,
-            });
-        }
-    }
-    let plot = SweepPlot {
-        title: format!("grid2 on {}, {rays} rays", scene.name),
-        x_label: "inner cells per primitive (lambda)".into(),
-        log_x: true,
-        marker: Some((
-            d.lambda as f64,
-            format!("default (top_lambda={}, lambda={})", d.top_lambda, d.lambda),
-        )),
-    };
+    let points = crossed("top_lambda", top_lambda, lambda, |top, l| {
+        format!("grid2:top_lambda={top},lambda={l}")
+    })?;
+    let marker = format!("default (top_lambda={}, lambda={})", d.top_lambda, d.lambda);
+    let plot = SweepPlot::log_x(
+        format!("grid2 on {}, {rays} rays", scene.name),
+        "inner cells per primitive (lambda)",
+        (d.lambda as f64, marker),
+    );
     let default: IndexSpec =
         format!("grid2:top_lambda={},lambda={}", d.top_lambda, d.lambda).parse()?;
     Ok(SweepPlan {

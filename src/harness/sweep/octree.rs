@@ -1,7 +1,8 @@
 //! The octree's sweep (either traversal of the same tree): one line per maximum depth, against
 //! the leaf size.
 
-use super::{SweepPlan, SweepPlot, SweepPoint};
+use super::plan::crossed;
+use super::{SweepPlan, SweepPlot};
 use crate::index::{BuildError, IndexSpec, OctreeParams};
 use crate::scene::Scene;
 
@@ -15,28 +16,18 @@ pub fn octree_plan(
     max_depth: &[u32],
 ) -> Result<SweepPlan, BuildError> {
     let d = OctreeParams::default();
-    let mut points: Vec<SweepPoint> = Vec::new();
-    for &depth in max_depth {
-        for &m in max_prims {
-            points.push(SweepPoint {
-                series: format!("max_depth={depth}"),
-                x: m as f64,
-                spec: format!("{name}:max_prims={m},max_depth={depth}").parse()?,
-            });
-        }
-    }
-    let plot = SweepPlot {
-        title: format!("{name} on {}, {rays} rays", scene.name),
-        x_label: "max primitives per leaf".into(),
-        log_x: true,
-        marker: Some((
-            d.max_prims as f64,
-            format!(
-                "default (max_prims={}, max_depth={})",
-                d.max_prims, d.max_depth
-            ),
-        )),
-    };
+    let points = crossed("max_depth", max_depth, max_prims, |depth, m| {
+        format!("{name}:max_prims={m},max_depth={depth}")
+    })?;
+    let marker = format!(
+        "default (max_prims={}, max_depth={})",
+        d.max_prims, d.max_depth
+    );
+    let plot = SweepPlot::log_x(
+        format!("{name} on {}, {rays} rays", scene.name),
+        "max primitives per leaf",
+        (d.max_prims as f64, marker),
+    );
     let default: IndexSpec =
         format!("{name}:max_prims={},max_depth={}", d.max_prims, d.max_depth).parse()?;
     Ok(SweepPlan {

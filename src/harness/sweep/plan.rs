@@ -2,6 +2,8 @@
 //! ([`SweepPlot`]), what its size column counts, and the default it is compared with.
 
 use super::SweepPoint;
+use crate::index::BuildError;
+use std::fmt::Display;
 
 /// Titles, axis and marker of a sweep's charts.
 #[derive(Debug, Clone, Default)]
@@ -25,4 +27,38 @@ pub struct SweepPlan {
     pub plot: SweepPlot,
     /// The spec of the default parameters, compared with the fastest point.
     pub default: String,
+}
+
+impl SweepPlot {
+    /// A chart of `title` over a logarithmic x axis labelled `x_label`, with the default or
+    /// heuristic choice `marker` `(x, label)` drawn as a vertical line.
+    pub fn log_x(title: String, x_label: &str, marker: (f64, String)) -> SweepPlot {
+        SweepPlot {
+            title,
+            x_label: x_label.into(),
+            log_x: true,
+            marker: Some(marker),
+        }
+    }
+}
+
+/// The points of a sweep over two parameters: a series per value `o` of `outer` (named
+/// `{outer_name}={o}`), in it a point per value `i` of `inner` at `x = i`, of spec `spec(o, i)`.
+pub(super) fn crossed<O: Copy + Display, I: Copy + Into<f64>>(
+    outer_name: &str,
+    outer: &[O],
+    inner: &[I],
+    spec: impl Fn(O, I) -> String,
+) -> Result<Vec<SweepPoint>, BuildError> {
+    let mut points = Vec::new();
+    for &o in outer {
+        for &i in inner {
+            points.push(SweepPoint {
+                series: format!("{outer_name}={o}"),
+                x: i.into(),
+                spec: spec(o, i).parse()?,
+            });
+        }
+    }
+    Ok(points)
 }
