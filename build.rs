@@ -1,10 +1,10 @@
 //! Compiles the tinybvh peer's C++ shim (feature `tinybvh`): tinybvh's single header
-//! (`third_party/tinybvh`) with `src/index/tinybvh_peer/shim.cpp`. Nothing to do otherwise.
+//! (`third_party/tinybvh`) with `src/index/peers/tinybvh/shim.cpp`. Nothing to do otherwise.
 
 fn main() {
     #[cfg(feature = "tinybvh")]
     {
-        let shim = "src/index/tinybvh_peer/shim.cpp";
+        let shim = "src/index/peers/tinybvh/shim.cpp";
         cc::Build::new()
             .cpp(true)
             .std("c++20")

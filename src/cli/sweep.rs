@@ -1,15 +1,17 @@
 //! `accelbench sweep <index>`: race one index at many parameter values on the same scene and
 //! rays, and write a CSV and charts (`sweep grid` for the grid resolution). Each index's sweep
-//! is a subcommand sharing [`CommonSweepArgs`].
+//! is a subcommand sharing [`CommonSweepArgs`]; its plan (points, charts, default) is the
+//! harness's ([`crate::harness::sweep`]).
 
 use super::{parse_threads, with_threads};
-use crate::geometry::{Aabb, Ray, TriangleKernelKind};
-use crate::harness::sweep::{SweepPoint, SweepRow, SweepSetup, run_sweep};
-use crate::index::bvh::params::{BvhParams, SPLIT_BUDGET};
-use crate::index::grid::{DEFAULT_LAMBDA, MAX_CELLS, heuristic_resolution, resolution};
-use crate::index::{Grid2Params, OctreeParams};
+use crate::geometry::{Ray, TriangleKernelKind};
+use crate::harness::sweep::{
+    SweepPlan, SweepRow, SweepSetup, bvh_plan, grid_plan, grid2_plan, octree_plan, run_sweep,
+};
+use crate::index::bvh::params::SPLIT_BUDGET;
+use crate::index::grid::resolution;
 use crate::rays::{RaySetKind, ray_set};
-use crate::report::sweep_report::{SweepPlot, write_sweep};
+use crate::report::sweep_report::write_sweep;
 use crate::scene::{Scene, load_scene};
 use anyhow::Context;
 use std::path::PathBuf;
@@ -182,75 +184,43 @@ fn prepare(c: &CommonSweepArgs, index: &str) -> anyhow::Result<Prepared> {
     })
 }
 
-/// Cells per axis for `r` cells along the longest axis of `bounds` (cubic cells, at least one
-/// per axis).
-fn res_for_longest(bounds: &Aabb, r: u32) -> [u32; 3] {
-    let e = bounds.extent();
-    let longest = e.max_element();
-    if longest <= 0.0 {
-        return [1; 3];
-    }
-    e.to_array()
-        .map(|x| ((x / longest * r as f32).round() as u32).clamp(1, r))
-}
-
 fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
     let p = prepare(&a.common, "grid")?;
-    let bounds = p.scene.bounds();
-    let n = p.scene.len();
-    let longest = bounds.largest_axis();
-    let heuristic = heuristic_resolution(bounds.extent(), n, DEFAULT_LAMBDA)[longest];
-    let (mut res, mut lambdas) = (a.res.clone(), a.lambda.clone());
-    if res.is_empty() && lambdas.is_empty() {
-        lambdas = vec![1.0, 2.0, 4.0, 8.0, 16.0];
-        res = [0.125, 0.25, 0.5, 1.0, 2.0, 4.0]
-            .iter()
-            .map(|f| ((heuristic as f64 * f).round() as u32).max(1))
-            .filter(|&r| resolution::total_cells(res_for_longest(&bounds, r)) <= MAX_CELLS)
-            .collect();
-        res.dedup();
-    }
-    let mut points: Vec<SweepPoint> = Vec::new();
-    for &r in &res {
-        let [x, y, z] = res_for_longest(&bounds, r);
-        points.push(SweepPoint {
-            series: "res (cubic cells)".into(),
-            x: r as f64,
-            spec: format!("grid:res=[{x},{y},{z}]").parse()?,
-        });
-    }
-    for &l in &lambdas {
-        points.push(SweepPoint {
-            series: "lambda (heuristic)".into(),
-            x: heuristic_resolution(bounds.extent(), n, l)[longest] as f64,
-            spec: format!("grid:lambda={l}").parse()?,
-        });
-    }
-    let plot = SweepPlot {
-        title: format!("grid on {}, {} rays", p.scene.name, a.common.rays.name()),
-        x_label: "cells along the longest axis".into(),
-        log_x: true,
-        marker: Some((
-            heuristic as f64,
-            format!("heuristic (lambda={DEFAULT_LAMBDA})"),
-        )),
-    };
-    let default = format!("grid:lambda={DEFAULT_LAMBDA}");
-    sweep_and_write(&p, &a.common, "grid", "cells", &points, &plot, &default)
+    let plan = grid_plan(&p.scene, a.common.rays.name(), &a.res, &a.lambda)?;
+    sweep_and_write(&p, &a.common, &plan)
 }
 
-/// Times every point on the prepared scene and rays (progress on stderr, one line per point;
-/// `size_label` names what the structure's size counts, e.g. "cells"), writes the CSV and
-/// charts, and prints the fastest point and how the `default` spec compares with it.
-fn sweep_and_write(
-    p: &Prepared,
-    common: &CommonSweepArgs,
-    index: &str,
-    size_label: &str,
-    points: &[SweepPoint],
-    plot: &SweepPlot,
-    default: &str,
-) -> anyhow::Result<()> {
+fn run_grid2(a: Grid2SweepArgs) -> anyhow::Result<()> {
+    let p = prepare(&a.common, "grid2")?;
+    let plan = grid2_plan(&p.scene, a.common.rays.name(), &a.top_lambda, &a.lambda)?;
+    sweep_and_write(&p, &a.common, &plan)
+}
+
+fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
+    let name = a.traversal.as_str();
+    let p = prepare(&a.common, name)?;
+    let rays = a.common.rays.name();
+    let plan = octree_plan(&p.scene, rays, name, &a.max_prims, &a.max_depth)?;
+    sweep_and_write(&p, &a.common, &plan)
+}
+
+fn run_bvh(a: BvhSweepArgs) -> anyhow::Result<()> {
+    let p = prepare(&a.common, &a.trees.join("-"))?;
+    let plan = bvh_plan(&p.scene, a.common.rays.name(), &a.trees, &a.split_budget)?;
+    sweep_and_write(&p, &a.common, &plan)
+}
+
+/// Times every point of `plan` on the prepared scene and rays (progress on stderr, one line
+/// per point), writes the CSV and charts, and prints the fastest point and how the plan's
+/// default compares with it.
+fn sweep_and_write(p: &Prepared, common: &CommonSweepArgs, plan: &SweepPlan) -> anyhow::Result<()> {
+    let SweepPlan {
+        index,
+        size_label,
+        points,
+        plot,
+        default,
+    } = plan;
     let geom = p.scene.geometry();
     let setup = SweepSetup {
         geom: &geom,
@@ -322,109 +292,4 @@ fn summarize(rows: &[SweepRow], default: &str) -> anyhow::Result<()> {
         );
     }
     Ok(())
-}
-
-fn run_grid2(a: Grid2SweepArgs) -> anyhow::Result<()> {
-    let p = prepare(&a.common, "grid2")?;
-    let d = Grid2Params::default();
-    let mut points: Vec<SweepPoint> = Vec::new();
-    for &top in &a.top_lambda {
-        for &l in &a.lambda {
-            points.push(SweepPoint {
-                series: format!("top_lambda={top}"),
-                x: l as f64,
-                spec: format!("grid2:top_lambda={top},lambda={l}").parse()?,
-            });
-        }
-    }
-    let plot = SweepPlot {
-        title: format!("grid2 on {}, {} rays", p.scene.name, a.common.rays.name()),
-        x_label: "inner cells per primitive (lambda)".into(),
-        log_x: true,
-        marker: Some((
-            d.lambda as f64,
-            format!("default (top_lambda={}, lambda={})", d.top_lambda, d.lambda),
-        )),
-    };
-    let default: crate::index::IndexSpec =
-        format!("grid2:top_lambda={},lambda={}", d.top_lambda, d.lambda).parse()?;
-    sweep_and_write(
-        &p,
-        &a.common,
-        "grid2",
-        "cells",
-        &points,
-        &plot,
-        &default.to_string(),
-    )
-}
-
-fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
-    let name = a.traversal.as_str();
-    let p = prepare(&a.common, name)?;
-    let d = OctreeParams::default();
-    let mut points: Vec<SweepPoint> = Vec::new();
-    for &depth in &a.max_depth {
-        for &m in &a.max_prims {
-            points.push(SweepPoint {
-                series: format!("max_depth={depth}"),
-                x: m as f64,
-                spec: format!("{name}:max_prims={m},max_depth={depth}").parse()?,
-            });
-        }
-    }
-    let plot = SweepPlot {
-        title: format!("{name} on {}, {} rays", p.scene.name, a.common.rays.name()),
-        x_label: "max primitives per leaf".into(),
-        log_x: true,
-        marker: Some((
-            d.max_prims as f64,
-            format!(
-                "default (max_prims={}, max_depth={})",
-                d.max_prims, d.max_depth
-            ),
-        )),
-    };
-    let default: crate::index::IndexSpec =
-        format!("{name}:max_prims={},max_depth={}", d.max_prims, d.max_depth).parse()?;
-    sweep_and_write(
-        &p,
-        &a.common,
-        name,
-        "nodes",
-        &points,
-        &plot,
-        &default.to_string(),
-    )
-}
-
-fn run_bvh(a: BvhSweepArgs) -> anyhow::Result<()> {
-    let p = prepare(&a.common, &a.trees.join("-"))?;
-    let spec = |tree: &str, b: f32| format!("{tree}:spatial_splits=true,split_budget={b}");
-    let mut points: Vec<SweepPoint> = Vec::new();
-    for tree in &a.trees {
-        for &b in &a.split_budget {
-            points.push(SweepPoint {
-                series: tree.clone(),
-                x: b as f64,
-                spec: spec(tree, b).parse()?,
-            });
-        }
-    }
-    let default_budget = BvhParams::default().config()?.split_budget;
-    let plot = SweepPlot {
-        title: format!(
-            "spatial splits on {}, {} rays",
-            p.scene.name,
-            a.common.rays.name()
-        ),
-        x_label: "references per primitive at most (split_budget)".into(),
-        log_x: true,
-        marker: Some((
-            default_budget.into(),
-            format!("default (split_budget={default_budget})"),
-        )),
-    };
-    let default = spec(&a.trees[0], default_budget);
-    sweep_and_write(&p, &a.common, "bvh", "nodes", &points, &plot, &default)
 }

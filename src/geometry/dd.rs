@@ -6,7 +6,7 @@
 //! scene and ray values, so differences of two inputs are exact (see [`Dd::diff`]) and every
 //! later operation carries a relative error near `2^-104`.
 
-pub use crate::geometry::triangle::exact::expansion::{two_prod, two_sum};
+pub use super::expansion::{two_prod, two_sum};
 use glam::Vec3A;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 

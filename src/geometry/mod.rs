@@ -4,6 +4,7 @@ mod aabb;
 mod aabb_kernel;
 pub mod clip;
 pub mod dd;
+pub mod expansion;
 pub mod float;
 mod hit;
 pub mod overlap;
@@ -18,6 +19,7 @@ pub mod sphere;
 #[cfg(test)]
 pub(crate) mod test_support;
 pub mod triangle;
+mod triangle_shape;
 
 pub use aabb::{Aabb, SLAB_FAR_SCALE};
 pub use aabb_kernel::intersect_box;

@@ -73,7 +73,7 @@ impl Ray {
     }
 
     /// Whether the slab tests may take their variant without NaN selects and with the far
-    /// distance widened by one product (`SAFE = false` in `index::bvh::slab` and in
+    /// distance widened by one product (`SAFE = false` in `index::kit::box_tree::slab` and in
     /// `scene::accept`): every `inv_dir` component finite and `t_min >= 0`.
     #[inline(always)]
     pub fn fast_slabs(&self) -> bool {

@@ -2,19 +2,8 @@
 //! against the swept value), one line per series.
 
 use super::{Chart, ReportError, Series, line_chart, write_csv};
-use crate::harness::sweep::SweepRow;
+use crate::harness::sweep::{SweepPlot, SweepRow};
 use std::path::{Path, PathBuf};
-
-/// Titles, axis and marker of a sweep's charts.
-#[derive(Debug, Clone, Default)]
-pub struct SweepPlot {
-    /// What was swept, for titles (`grid on stanford_bunny, primary rays`).
-    pub title: String,
-    pub x_label: String,
-    pub log_x: bool,
-    /// The default or heuristic choice `(x, label)`, drawn as a vertical line.
-    pub marker: Option<(f64, String)>,
-}
 
 /// The files a sweep wrote.
 #[derive(Debug, Clone)]

@@ -66,7 +66,7 @@ pub fn accept_lanes(
     }
 }
 
-/// [`accept_lanes`] in two variants, as the node slab test ([`crate::index::bvh::slab`]):
+/// [`accept_lanes`] in two variants, as the node slab test ([`crate::index::kit::box_tree::slab`]):
 /// `SAFE = false` for rays whose `inv_dir` components are all finite and whose `t_min >= 0`
 /// ([`Ray::fast_slabs`]), `SAFE = true` for the others. Without `SAFE`:
 /// - the NaN selects are skipped: `(plane - origin) * inv_dir` of finite planes is never NaN

@@ -6,6 +6,7 @@ mod error;
 pub mod file;
 pub mod generators;
 mod geometry;
+mod load;
 mod material;
 mod meshes_dir;
 pub mod obj;
@@ -20,6 +21,7 @@ pub use error::SceneError;
 pub use geometry::{
     Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
 };
+pub use load::load_scene;
 pub use material::{Material, MaterialMap};
 pub use meshes_dir::meshes_in;
 pub use transform_shapes::ShapeTransformError;
@@ -220,23 +222,5 @@ impl Scene {
             position: c + Vec3::new(0.5, 1.0, 0.8) * d,
             intensity: Vec3::ONE,
         }]
-    }
-}
-
-/// Resolves a `--scene` argument: a path to an `.obj` or `.toml` file (extension in any case),
-/// or a built-in scene name with optional parameters (`soup`, `stadium:n=1000000`,
-/// `soup:n=100000,seed=3`; see [`generators::GeneratorSpec`]).
-pub fn load_scene(arg: &str) -> Result<Scene, SceneError> {
-    let path = Path::new(arg);
-    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
-    match ext.as_deref() {
-        Some("obj") => Scene::load_obj(path),
-        Some("toml") => file::load_scene_file(path),
-        _ => generators::builtin(arg).unwrap_or_else(|| {
-            Err(SceneError::UnknownScene(
-                arg.to_owned(),
-                generators::BUILTIN_NAMES.join(", "),
-            ))
-        }),
     }
 }

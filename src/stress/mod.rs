@@ -184,7 +184,7 @@ mod tests {
     use super::*;
     use crate::geometry::Ray;
     use crate::geometry::triangle::Watertight;
-    use crate::index::{Index, IndexInfo, Stats, build_index_on};
+    use crate::index::{BatchIndex, Index, IndexInfo, Stats, build_index_on};
     use crate::scene::{Geometry, Triangles};
 
     /// A broken index: brute force that never tests the first half of the primitives.
@@ -215,6 +215,8 @@ mod tests {
             IndexInfo::default()
         }
     }
+
+    impl BatchIndex for SkipsHalf {}
 
     fn broken(
         _: &IndexSpec,

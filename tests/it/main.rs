@@ -17,6 +17,7 @@ mod grid;
 mod grid2;
 mod kdtree;
 mod last_hit;
+mod layout;
 mod leak;
 mod messages;
 mod obvhs_peer;

@@ -7,7 +7,7 @@ use crate::suite::{config, run_built_by};
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
 use accelbench::harness::suite::SuiteResult;
-use accelbench::index::{BuildError, Index, IndexInfo, IndexSpec, Stats, TraceIndex};
+use accelbench::index::{BatchIndex, BuildError, Index, IndexInfo, IndexSpec, Stats, TraceIndex};
 use accelbench::index::{build_index, build_index_on};
 use accelbench::scene::{Geometry, SceneGeometry, Triangles, generators};
 use common::drop_one::{NoParams, closest_skipping};
@@ -33,6 +33,8 @@ impl<const TIMED_ONLY: bool> Index for PanicsOnTrace<TIMED_ONLY> {
         IndexInfo::default()
     }
 }
+
+impl<const TIMED_ONLY: bool> BatchIndex for PanicsOnTrace<TIMED_ONLY> {}
 
 /// Builds the faulty index over a scene's primitives.
 type Make = dyn Fn(&SceneGeometry) -> Result<Box<dyn TraceIndex>, BuildError>;

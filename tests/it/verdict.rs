@@ -10,8 +10,8 @@ use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
 use accelbench::harness::suite::{IndexBuilder, Shard, SuiteConfig, SuiteResult, run_suite_with};
 use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{
-    BuildError, Bvh4, Bvh8, Index, IndexInfo, IndexSpec, Stats, TraceIndex, TraceMode, build_index,
-    build_index_on,
+    BatchIndex, BuildError, Bvh4, Bvh8, Index, IndexInfo, IndexSpec, Stats, TraceIndex, TraceMode,
+    build_index, build_index_on,
 };
 use accelbench::rays::incoherent_rays;
 use accelbench::report::suite_report::{RunMeta, write_suite_report};
@@ -45,6 +45,8 @@ impl Index for Blind {
         IndexInfo::default()
     }
 }
+
+impl BatchIndex for Blind {}
 
 fn config(indices: &[&str], modes: Vec<TraceMode>) -> SuiteConfig {
     SuiteConfig {
@@ -223,7 +225,7 @@ fn one_ray_at_a_time(calls: &[usize]) -> bool {
     calls.windows(2).all(|w| w[0] <= w[1])
 }
 
-fn kernel_call_order<I: Index>(mode: TraceMode) -> Vec<usize> {
+fn kernel_call_order<I: BatchIndex>(mode: TraceMode) -> Vec<usize> {
     let scene = generators::generate("soup", 3000, 4).unwrap();
     let rays = incoherent_rays(&scene.ray_set_bounds(), 64, 3);
     let geom = RayLog {

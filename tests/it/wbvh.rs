@@ -5,7 +5,7 @@
 use crate::common;
 
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::index::{Bvh4, Bvh8, BvhParams, Index};
+use accelbench::index::{BatchIndex, Bvh4, Bvh8, BvhParams, Index};
 use accelbench::scene::{Scene, Triangles, generators};
 
 /// Leaf sizes 1..=8 and node widths 2..=`max_children` all occur in the wide trees of the

@@ -1,7 +1,8 @@
 //! Finite, capped, arbitrarily oriented right circular cones.
 
+use super::ShapeError;
 use super::axial::{AxialRay, AxialSegment, split};
-use super::{ShapeError, disc_half_extent, first_hit, padded_bounds};
+use super::hit_support::{disc_half_extent, first_hit, padded_bounds};
 use crate::geometry::{Aabb, Ray};
 use glam::Vec3A;
 

@@ -1,6 +1,7 @@
 //! Ellipsoids with arbitrary axes, intersected in the frame where they are the unit sphere.
 
-use super::{ShapeError, checked_frame, first_hit, padded_bounds};
+use super::ShapeError;
+use super::hit_support::{checked_frame, first_hit, padded_bounds};
 use crate::geometry::quadratic::ball_roots;
 use crate::geometry::{Aabb, Ray};
 use glam::{Mat3A, Vec3A};

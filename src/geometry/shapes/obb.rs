@@ -1,7 +1,8 @@
 //! Oriented boxes and their two kernels: the slab method in the box's frame, and the course's
 //! "intersect the three front-facing planes, return the closest".
 
-use super::{ShapeError, checked_frame, first_hit, padded_bounds};
+use super::ShapeError;
+use super::hit_support::{checked_frame, first_hit, padded_bounds};
 use crate::geometry::aabb_kernel::slab_first_hit;
 use crate::geometry::overlap::OVERLAP_PAD;
 use crate::geometry::real::Real;

@@ -14,7 +14,8 @@
 //! counts of a ray add up to the count of their union plus twice that edge's: a ray through the
 //! union away from other edges is inside exactly one of them, also on the shared edge itself.
 
-use super::{ShapeError, first_hit};
+use super::ShapeError;
+use super::hit_support::first_hit;
 use crate::geometry::overlap::triangle_overlaps_box;
 use crate::geometry::{Aabb, Ray, Triangle};
 use glam::{DVec3, Vec3A};

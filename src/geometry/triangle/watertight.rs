@@ -113,7 +113,7 @@ mod tests {
     use super::*;
     use crate::geometry::Triangle;
     use crate::geometry::test_support::unit_floats;
-    use crate::geometry::triangle::lanes::LaneTally;
+    use crate::geometry::triangle::lane_check::LaneTally;
     use glam::{Vec3, Vec3A};
 
     /// Decided lanes equal the scalar kernel bit for bit on random triangles at several scales,

@@ -24,8 +24,8 @@ use crate::geometry::Aabb;
 use crate::geometry::clip::box_halfspace_bounds;
 use crate::geometry::polyhedron::ConvexPolyhedron;
 use crate::index::BuildError;
-use crate::index::kdtree::sweep::{Ref, Weights, best_axis_split};
-use crate::index::near_far::{Built, SahParams};
+use crate::index::kit::near_far::sweep::{Ref, Weights, best_axis_split};
+use crate::index::kit::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
 

@@ -1,6 +1,6 @@
 //! A general BSP tree: convex cells split by planes of any orientation (axis planes and the
 //! primitives' own planes, autopartition-style), chosen by a cost estimate ([`build`]), and the
-//! near/far traversal of [`crate::index::near_far`] with the signed distance to the plane.
+//! near/far traversal of [`crate::index::kit::near_far`] with the signed distance to the plane.
 //!
 //! Crossing of a plane: see the node's step ([`node`]). With the builder's padding (a primitive
 //! within `pad` of a plane is on both sides) and the strict skip rule, hits match brute force.
@@ -19,9 +19,9 @@ mod node;
 
 pub use node::{BspKind, BspNode};
 
-use super::BuildError;
-use super::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::geometry::Aabb;
+use crate::index::BuildError;
+use crate::index::kit::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
 use serde::{Deserialize, Serialize};

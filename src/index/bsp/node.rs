@@ -2,7 +2,7 @@
 
 use crate::geometry::Ray;
 use crate::geometry::float::gamma;
-use crate::index::near_far::{AxisRay, CROSSING_REL, SplitNode, Step, axis_step};
+use crate::index::kit::near_far::{AxisRay, CROSSING_REL, SplitNode, Step, axis_step};
 use glam::Vec3A;
 
 /// One BSP node. An interior node holds its plane `normal . p = offset` (unit normal); the child

@@ -13,12 +13,12 @@
 //! and the extra references it may make).
 
 use super::binned;
-use super::node::{Child, Node};
 use super::params::{BuildConfig, SplitMethod};
 use super::prim_ref::{PrimRef, bounds_and_centroids};
 use super::spatial::{self, Clip, Spatial, share};
 use super::sweep;
 use crate::geometry::Aabb;
+use crate::index::kit::box_tree::node::{Child, Node};
 
 /// Most levels of the tree (root = level 1). A node at this level becomes a leaf whatever its
 /// size, so a traversal stack of `MAX_DEPTH` entries can never overflow.

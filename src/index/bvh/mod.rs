@@ -2,39 +2,34 @@
 //! inner nodes holding both children's boxes, front-to-back closest-hit traversal with early
 //! termination, and any-hit.
 //!
-//! - [`params`]: presets and overrides; `build`: the builder (straight into the node array), with the SAH
-//!   split finders in `binned` and `sweep`, and the spatial splits (SBVH, an option) in `spatial`; `node`: the node layout; `slab`: the two-box slab
-//!   test (over the SIMD registers of `lanes`); `traverse`: the node step; `walk`: the traversal
-//!   loop and `leaves` the leaf tests (both shared with the wide BVH); `packet`: the packet walk
-//!   (shared too) over `packet_slab`, the slab test of one box against a packet of rays.
+//! - [`params`]: presets and overrides; `build`: the builder (straight into the node array),
+//!   with the SAH split finders in `binned` and `sweep`, and the spatial splits (SBVH, an
+//!   option) in `spatial`; `traverse`: the node step; `packet`: the node's side of the packet
+//!   walk. The node layout, the slab tests, the traversal loops, the leaves and the packet walk
+//!   are the box-tree kit's ([`crate::index::kit::box_tree`]), shared with the wide BVH.
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids. With
 //!   spatial splits an id may occur in several leaves; the hits stay exact (see `spatial`).
 
 mod binned;
 mod build;
-pub(crate) mod lanes;
-pub(crate) mod leaves;
-pub(crate) mod node;
-pub(crate) mod packet;
-pub(crate) mod packet_slab;
+mod packet;
 pub mod params;
 mod prim_ref;
-pub(crate) mod slab;
 mod spatial;
 mod sweep;
 mod traverse;
-pub(crate) mod walk;
 
 pub use build::MAX_DEPTH;
 use params::BuildConfig;
 pub use params::{BvhParams, Preset, SplitMethod};
 
-use super::huge_pages::huge_page_vec;
-use super::{BuildError, Index, IndexInfo};
 use crate::geometry::Aabb;
+use crate::index::kit::box_tree::node::{Child, Node};
+use crate::index::kit::box_tree::{leaves, tree, walk};
+use crate::index::kit::huge_pages::huge_page_vec;
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo};
 use crate::scene::Geometry;
-use node::{Child, Node};
 use prim_ref::PrimRef;
 use rayon::prelude::*;
 
@@ -85,6 +80,10 @@ impl Index for Bvh {
             ..IndexInfo::default()
         }
     }
+}
+
+impl BatchIndex for Bvh {
+    crate::index::kit::box_tree::packet::tree_packets!();
 }
 
 impl Bvh {
@@ -148,7 +147,7 @@ impl Bvh {
     #[inline(always)]
     fn tree(&self) -> traverse::Tree<'_> {
         traverse::Tree {
-            top: walk::Top {
+            top: tree::Top {
                 root_bounds: &self.root_bounds,
                 root: self.root,
                 leaves: leaves::Leaves::Ids(&self.prim_ids),

@@ -128,7 +128,7 @@ pub struct BuildConfig {
     /// Primitives one leaf test covers: the SAH counts each side's (and each leaf's)
     /// primitives rounded up to a multiple of it, as Embree's builders count blocks of four
     /// triangles, so splits favour leaves that fill whole blocks. 1 (plain counts) except for
-    /// the wide BVH's triangle-block leaves ([`crate::index::bvh::leaves::BLOCK_LANES`]); not
+    /// the wide BVH's triangle-block leaves ([`crate::index::kit::box_tree::leaves::BLOCK_LANES`]); not
     /// a user parameter.
     pub sah_block: u32,
 }

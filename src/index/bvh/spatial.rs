@@ -45,7 +45,7 @@
 use super::binned::{AxisBins, SLOTS, Sweep};
 use super::prim_ref::PrimRef;
 use crate::geometry::{Aabb, Triangle};
-use crate::index::near_far::scene_pad;
+use crate::index::kit::near_far::scene_pad;
 use crate::scene::Geometry;
 use glam::Vec3A;
 

@@ -5,8 +5,8 @@ use super::*;
 use crate::geometry::Triangle;
 use crate::geometry::triangle::Watertight;
 use crate::index::bvh::build::{Built, build};
-use crate::index::bvh::node::Child;
 use crate::index::bvh::params::BvhParams;
+use crate::index::kit::box_tree::node::Child;
 use crate::scene::generators::{slivers, sphere_field};
 use crate::scene::{Mixed, Triangles};
 

@@ -1,4 +1,5 @@
-//! The binary tree's node step for the shared traversal loop ([`super::walk`]): both
+//! The binary tree's node step for the shared traversal loop
+//! ([`crate::index::kit::box_tree::walk`]): both
 //! children's boxes in one SIMD pass ([`slab::hit_children`]); the nearer hit child is visited
 //! next and the farther pushed with its entry.
 //!
@@ -7,17 +8,17 @@
 //! [`MAX_DEPTH`].
 
 use super::build::MAX_DEPTH;
-use super::node::{Child, Node};
-use super::slab;
-use super::walk::{self, BoxTree, Entry, Step};
 use crate::index::Stats;
+use crate::index::kit::box_tree::node::{Child, Node};
+use crate::index::kit::box_tree::slab;
+use crate::index::kit::box_tree::tree::{self, BoxTree, Entry, Step};
 
 /// Stack capacity of the binary tree's traversal.
 pub const STACK: usize = MAX_DEPTH as usize;
 
 /// The tree as the queries see it: the root's box and reference, the inner nodes, and the
 /// primitive ids in leaf order.
-pub type Tree<'a> = walk::Tree<'a, Node>;
+pub type Tree<'a> = tree::Tree<'a, Node>;
 
 impl BoxTree<STACK> for Tree<'_> {
     #[inline(always)]

@@ -3,7 +3,7 @@
 //! compressed rows (one offset per cell into one id array).
 
 use super::layout::Layout;
-use crate::index::huge_pages::huge_page_vec;
+use crate::index::kit::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -16,9 +16,9 @@ pub use dda::Dda;
 pub use layout::Layout;
 pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, check_lambda, heuristic_resolution};
 
-use super::mailbox::{CellVisit, CellWalk, cell_walk_queries};
-use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::{Aabb, Ray};
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_queries};
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 pub(crate) use build::{Cells, MAX_REFS, fill_cells, fill_cells_with};
 use serde::{Deserialize, Serialize};
@@ -170,6 +170,8 @@ impl Index for Grid {
         }
     }
 }
+
+impl BatchIndex for Grid {}
 
 #[cfg(test)]
 mod tests {

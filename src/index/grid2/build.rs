@@ -5,7 +5,7 @@
 use crate::index::grid::{
     Cells, Layout, MAX_REFS, fill_cells, fill_cells_with, heuristic_resolution,
 };
-use crate::index::huge_pages::huge_page_vec;
+use crate::index::kit::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use rayon::prelude::*;
 

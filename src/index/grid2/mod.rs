@@ -23,9 +23,9 @@
 mod build;
 
 use super::grid::{Dda, Layout, check_lambda, finite_bounds};
-use super::mailbox::{CellVisit, CellWalk, cell_walk_queries};
-use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::Ray;
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_queries};
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use build::{Levels, NO_INNER, build_levels};
 use serde::{Deserialize, Serialize};
@@ -174,3 +174,5 @@ impl Index for Grid2 {
         }
     }
 }
+
+impl BatchIndex for Grid2 {}

@@ -3,14 +3,14 @@
 //! `bins - 1` planes that cut the cell into `bins` equal slabs per axis, and the references are
 //! counted per slab in one pass. The build keeps no event lists for such nodes (only the
 //! references and their clipped bounds) and sorts nothing; it switches to the exact sweep over
-//! sorted events ([`super::sweep::best_split_sorted`]) where a node has few references.
+//! sorted events ([`crate::index::kit::near_far::sweep::best_split_sorted`]) where a node has few references.
 //!
 //! The plane chosen is the cheapest bin boundary, not the cheapest perfect split: a tree with
 //! binned upper levels differs from the exact-SAH tree there (the trees below the switch are
 //! chosen exactly, each over its own cell).
 
-use super::sweep::{PlaneCost, Ref, Weights};
 use crate::geometry::Aabb;
+use crate::index::kit::near_far::sweep::{PlaneCost, Ref, Weights};
 
 /// Largest accepted bin count.
 pub const MAX_BINS: u32 = 1024;

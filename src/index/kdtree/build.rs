@@ -25,10 +25,10 @@
 
 use super::binned::Bins;
 use super::node::{KdNode, MAX_PAYLOAD};
-use super::sweep::{Event, Ref, Weights, best_split_sorted, push_events};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
-use crate::index::near_far::{Built, SahParams};
+use crate::index::kit::near_far::sweep::{Event, Ref, Weights, best_split_sorted, push_events};
+use crate::index::kit::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
 

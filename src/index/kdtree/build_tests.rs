@@ -5,9 +5,9 @@
 use super::*;
 use crate::geometry::triangle::Watertight;
 use crate::index::kdtree::parallel::{self, Parallel, Top};
-use crate::index::kdtree::sweep::best_axis_split;
-use crate::index::near_far::default_max_depth;
-use crate::index::near_far::{scene_bounds, scene_pad};
+use crate::index::kit::near_far::default_max_depth;
+use crate::index::kit::near_far::sweep::best_axis_split;
+use crate::index::kit::near_far::{scene_bounds, scene_pad};
 use crate::scene::{Triangles, generators};
 use std::sync::Arc;
 

@@ -3,7 +3,7 @@
 //! Build: SAH with empty-space bonus and conservative classification; nodes with more than
 //! `binned_above` references choose among bin boundaries ([`binned`]), the others among all
 //! perfect splits by a sweep over sorted events ([`build`]). Traversal: the shared near/far walk
-//! of [`crate::index::near_far`] over 8-byte nodes ([`KdNode`], its step in [`node`]); leaves
+//! of [`crate::index::kit::near_far`] over 8-byte nodes ([`KdNode`], its step in [`node`]); leaves
 //! of one primitive hold its id, the others index one id array.
 //!
 //! Why the hits match brute force: every primitive within `pad` of a plane is on both sides, the
@@ -15,7 +15,7 @@
 //!
 //! Build figures: with the default parameters the Stanford bunny (69,451 triangles) gives a
 //! 3.3 MB tree (pbrt's depth limit `8 + 1.3 log2 N` gave 11.4 MB, see
-//! [`crate::index::near_far::default_max_depth`]). Most of the time is the clipping of
+//! [`crate::index::kit::near_far::default_max_depth`]). Most of the time is the clipping of
 //! straddling triangles, the partition of the event lists and the sweeps; the children of the
 //! top six levels are built in parallel ([`parallel`]) into separate arrays joined by shifting
 //! their links, so the tree is the one the sequential build makes (tested node for node).
@@ -24,13 +24,12 @@ mod binned;
 mod build;
 mod node;
 mod parallel;
-pub(crate) mod sweep;
 
 pub use node::{KdKind, KdNode};
 
-use super::BuildError;
-use super::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::geometry::Aabb;
+use crate::index::BuildError;
+use crate::index::kit::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
 

@@ -1,7 +1,7 @@
 //! The compact 8-byte kd-tree node (pbrt's layout) and its near/far step.
 
 use crate::geometry::Ray;
-use crate::index::near_far::{AxisRay, SplitNode, Step, axis_step};
+use crate::index::kit::near_far::{AxisRay, SplitNode, Step, axis_step};
 
 /// One kd-tree node in 8 bytes.
 ///

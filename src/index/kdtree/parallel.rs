@@ -4,10 +4,10 @@
 
 use super::build::{Binning, Builder, Input, Split, root_input, too_big};
 use super::node::{KdNode, MAX_PAYLOAD};
-use super::sweep::MAX_ITEM;
 use crate::geometry::Aabb;
 use crate::index::BuildError;
-use crate::index::near_far::{Built, SahParams};
+use crate::index::kit::near_far::sweep::MAX_ITEM;
+use crate::index::kit::near_far::{Built, SahParams};
 use crate::scene::Geometry;
 
 /// Builds the tree over all primitives of `geom` in the cell `root` (their bounds), with

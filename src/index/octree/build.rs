@@ -7,7 +7,7 @@ use super::tree::{INTERNAL, NO_ROPE, Node, OctreeTree, face, octant_bit};
 use crate::geometry::Aabb;
 use crate::geometry::overlap::OVERLAP_PAD;
 use crate::index::BuildError;
-use crate::index::huge_pages::huge_page_vec;
+use crate::index::kit::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use glam::Vec3A;
 use serde::{Deserialize, Serialize};

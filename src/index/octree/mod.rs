@@ -30,7 +30,7 @@
 //! travelled); the protocol's ray sets and the agreement tests stay well within that.
 //!
 //! Each primitive is tested at most once per ray through the shared per-thread
-//! [`mailbox`](crate::index::mailbox): a primitive rejected once stays rejected, because the
+//! [`mailbox`](crate::index::kit::mailbox): a primitive rejected once stays rejected, because the
 //! best `t` only shrinks.
 
 mod axis_ray;
@@ -49,9 +49,9 @@ pub use place::MIN_SIDE_IN_PADS;
 pub use topdown::TopDown;
 pub use tree::OctreeTree;
 
-use super::mailbox::{CellVisit, CellWalk, cell_walk_queries};
-use super::{BuildError, Index, IndexInfo, Stats};
 use crate::geometry::Ray;
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_queries};
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use std::marker::PhantomData;
 
@@ -141,3 +141,5 @@ impl<O: LeafOrder> Index for Octree<O> {
         }
     }
 }
+
+impl<O: LeafOrder> BatchIndex for Octree<O> {}

@@ -3,7 +3,7 @@
 //! closest hit with early termination, and any-hit.
 //!
 //! - `node`: the node layout and the collapse; `traverse`: the node step of the traversal loop
-//!   shared with the binary BVH (`bvh::walk`).
+//!   shared with the binary BVH (`kit::box_tree::walk`).
 //! - The parameters are the binary BVH's ([`BvhParams`]): the leaves are its leaves. With its
 //!   spatial splits a primitive may be in several leaves (a merged leaf may even name it
 //!   twice): every copy returns the same `t` for the same id, so the hits do not change.
@@ -15,13 +15,13 @@ mod node;
 mod packet;
 mod traverse;
 
-use super::bvh::BvhParams;
-use super::huge_pages::huge_page_vec;
-use super::{BuildError, Bvh, Index, IndexInfo};
 use crate::geometry::Aabb;
-use crate::index::bvh::leaves::{BLOCK_LANES, LeafStore};
-use crate::index::bvh::node::Child;
-use crate::index::bvh::walk;
+use crate::index::bvh::{Bvh, BvhParams};
+use crate::index::kit::box_tree::leaves::{BLOCK_LANES, LeafStore};
+use crate::index::kit::box_tree::node::Child;
+use crate::index::kit::box_tree::{stream, tree, walk};
+use crate::index::kit::huge_pages::huge_page_vec;
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use node::{WideNode, collapse};
 
@@ -86,24 +86,6 @@ impl<const C: usize> Index for WideBvh<C> {
 
     walk::tree_queries!();
 
-    const STREAM: bool = true;
-
-    /// Several walks at a time: chunks of camera-like rays in lockstep pairs of neighbours,
-    /// other chunks three walks at a time, each refilled as it finishes ([`walk::coherent`],
-    /// [`walk::closest_hits_lockstep`], [`walk::closest_hits_interleaved`]).
-    fn closest_hits_stream<G: Geometry, S: super::Stats>(
-        &self,
-        geom: &G,
-        rays: &[crate::geometry::Ray],
-        out: &mut [Option<crate::geometry::Hit>],
-        stats: &mut [S],
-    ) {
-        match walk::coherent(rays) {
-            true => walk::closest_hits_lockstep(&self.tree(), geom, rays, out, stats),
-            false => walk::closest_hits_interleaved(&self.tree(), geom, rays, out, stats),
-        }
-    }
-
     fn info(&self) -> IndexInfo {
         let memory_bytes = size_of::<Aabb>()
             + self.nodes.len() * size_of::<WideNode<C>>()
@@ -131,11 +113,33 @@ impl<const C: usize> Index for WideBvh<C> {
     }
 }
 
+impl<const C: usize> BatchIndex for WideBvh<C> {
+    crate::index::kit::box_tree::packet::tree_packets!();
+
+    const STREAM: bool = true;
+
+    /// Several walks at a time: chunks of camera-like rays in lockstep pairs of neighbours,
+    /// other chunks three walks at a time, each refilled as it finishes ([`stream::coherent`],
+    /// [`stream::closest_hits_lockstep`], [`stream::closest_hits_interleaved`]).
+    fn closest_hits_stream<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[crate::geometry::Ray],
+        out: &mut [Option<crate::geometry::Hit>],
+        stats: &mut [S],
+    ) {
+        match stream::coherent(rays) {
+            true => stream::closest_hits_lockstep(&self.tree(), geom, rays, out, stats),
+            false => stream::closest_hits_interleaved(&self.tree(), geom, rays, out, stats),
+        }
+    }
+}
+
 impl<const C: usize> WideBvh<C> {
     #[inline(always)]
     fn tree(&self) -> traverse::Tree<'_, C> {
         traverse::Tree {
-            top: walk::Top {
+            top: tree::Top {
                 root_bounds: &self.root_bounds,
                 root: self.root,
                 leaves: self.leaf_store.leaves(),

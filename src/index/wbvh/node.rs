@@ -12,9 +12,9 @@
 //! lines), `C = 2` 256 bytes (four), aligned to a cache line.
 
 use crate::geometry::Aabb;
-use crate::index::bvh::lanes::{F8, Lanes};
-use crate::index::bvh::node::{Child, Node};
-use crate::index::bvh::slab::{SlabRay, hit_near_far};
+use crate::index::kit::box_tree::lanes::{F8, Lanes};
+use crate::index::kit::box_tree::node::{Child, Node};
+use crate::index::kit::box_tree::slab::{SlabRay, hit_near_far};
 use glam::{Vec3A, Vec4};
 
 /// Up to `4 * C` children, filling lanes `0..n`.
@@ -25,7 +25,7 @@ pub struct WideNode<const C: usize> {
     pub children: [[Child; 4]; C],
     /// `planes[side][axis][chunk][lane]`: child `4 * chunk + lane`'s lower (`side` 0) or upper
     /// (`side` 1) plane on `axis`. Lanes without a child hold the empty box `+inf..-inf` on
-    /// every axis, which every ray misses (see [`crate::index::bvh::slab`]).
+    /// every axis, which every ray misses (see [`crate::index::kit::box_tree::slab`]).
     pub planes: [[[Vec4; C]; 3]; 2],
 }
 

@@ -1,6 +1,6 @@
 //! The wide trees' side of the packet walk shared with the binary BVH
-//! ([`crate::index::bvh::packet`]): one packet slab pass per existing child
-//! ([`crate::index::bvh::packet_slab::hit_box`], every lane exactly its ray's single-ray test
+//! ([`crate::index::kit::box_tree::packet`]): one packet slab pass per existing child
+//! ([`crate::index::kit::box_tree::packet_slab::hit_box`], every lane exactly its ray's single-ray test
 //! of that child), and the walk does the rest.
 //!
 //! Box tests are counted as the single-ray step counts them, one per child
@@ -8,8 +8,8 @@
 
 use super::traverse::{STACK, Tree};
 use crate::geometry::Aabb;
-use crate::index::bvh::node::Child;
-use crate::index::bvh::packet::PacketTree;
+use crate::index::kit::box_tree::node::Child;
+use crate::index::kit::box_tree::packet::PacketTree;
 
 impl<const C: usize> PacketTree<8, STACK> for Tree<'_, C> {
     #[inline(always)]

@@ -1,7 +1,7 @@
-//! The wide tree's node step for the shared traversal loop ([`crate::index::bvh::walk`]).
+//! The wide tree's node step for the shared traversal loop ([`crate::index::kit::box_tree::walk`]).
 //!
 //! All children's boxes are tested in one SIMD slab pass
-//! ([`crate::index::bvh::slab::hit_near_far`]: each axis's near and far planes read by the ray's
+//! ([`crate::index::kit::box_tree::slab::hit_near_far`]: each axis's near and far planes read by the ray's
 //! direction signs, with the entries and decisions of the scalar
 //! [`crate::geometry::Aabb::ray_interval`], so conservative and monotone like it). Closest hit visits the nearest hit child and
 //! pushes the others farthest first: one hit child is visited at once, two are ordered by one
@@ -20,16 +20,16 @@
 use super::node::WideNode;
 use crate::index::Stats;
 use crate::index::bvh::MAX_DEPTH;
-use crate::index::bvh::node::Child;
-use crate::index::bvh::walk::{self, BoxTree, Entry, Step};
-use crate::index::prefetch::{prefetch, prefetch_line};
-use crate::index::stack::Stack;
+use crate::index::kit::box_tree::node::Child;
+use crate::index::kit::box_tree::tree::{self, BoxTree, Entry, Step};
+use crate::index::kit::prefetch::{prefetch, prefetch_line};
+use crate::index::kit::stack::Stack;
 
 /// Stack capacity of the wide trees' traversal.
 pub const STACK: usize = 7 * MAX_DEPTH as usize;
 
 /// The tree as the queries see it.
-pub type Tree<'a, const C: usize> = walk::Tree<'a, WideNode<C>>;
+pub type Tree<'a, const C: usize> = tree::Tree<'a, WideNode<C>>;
 
 impl<const C: usize> Tree<'_, C> {
     /// Node `index`, its reference line (its first) prefetched.
@@ -154,8 +154,8 @@ mod tests {
     use super::*;
     use crate::geometry::{Aabb, Ray};
     use crate::index::NoStats;
-    use crate::index::bvh::leaves::Leaves;
-    use crate::index::bvh::slab::SlabRay;
+    use crate::index::kit::box_tree::leaves::Leaves;
+    use crate::index::kit::box_tree::slab::SlabRay;
     use glam::{Vec3, Vec3A};
 
     /// One closest-hit step on a node whose children lie along the ray at `entries` (child `i`
@@ -173,7 +173,7 @@ mod tests {
         let nodes = [WideNode::<2>::new(&kids)];
         let root_bounds = kids.iter().fold(kids[0].0, |b, k| b.union(k.0));
         let tree = Tree {
-            top: walk::Top {
+            top: tree::Top {
                 root_bounds: &root_bounds,
                 root: Child::inner(0),
                 leaves: Leaves::Ids(&[]),

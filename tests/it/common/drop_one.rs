@@ -1,7 +1,7 @@
 //! A faulty index for tests of the verification: brute force that never reports one primitive.
 
 use accelbench::geometry::{Hit, Ray};
-use accelbench::index::{BuildError, Index, IndexInfo, Stats};
+use accelbench::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use accelbench::scene::Geometry;
 
 #[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
@@ -46,3 +46,5 @@ pub fn closest_skipping<G: Geometry, S: Stats>(
     }
     best
 }
+
+impl BatchIndex for DropOne {}

@@ -4,7 +4,7 @@
 
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};
-use accelbench::index::near_far::{NearFarIndex, Partition};
+use accelbench::index::kit::near_far::{NearFarIndex, Partition};
 use accelbench::index::{BuildError, Counters, Index, IndexSpec, build_index, build_index_on};
 use accelbench::rays::SplitMix64;
 use accelbench::scene::{Geometry, Scene, Triangles, generators};

@@ -9,7 +9,7 @@
 //! scalar kernel settles by its exact fallback and counts; a non-finite `t`; non-finite inputs,
 //! which make the filter fail) is left to the scalar kernel.
 
-use super::FILTER;
+use super::filter::FILTER;
 use crate::geometry::Ray;
 use crate::geometry::triangle::lanes::{LaneHits, TriangleLanes};
 
@@ -116,7 +116,7 @@ mod tests {
     use crate::geometry::Triangle;
     use crate::geometry::test_support::unit_floats;
     use crate::geometry::triangle::Exact;
-    use crate::geometry::triangle::lanes::LaneTally;
+    use crate::geometry::triangle::lane_check::LaneTally;
     use glam::{Vec3, Vec3A};
 
     /// Points uniform in the cube `[-scale / 2, scale / 2]^3`, from a fixed seed.

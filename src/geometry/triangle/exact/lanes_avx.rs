@@ -13,7 +13,7 @@
 //! its order does not matter; a NaN coordinate makes two of the three edge functions NaN, so
 //! its lane is undecided whatever `m` is.
 
-use super::FILTER;
+use super::filter::FILTER;
 use crate::geometry::Ray;
 use crate::geometry::triangle::lanes::{LaneHits, TriangleLanes};
 use std::arch::x86_64::*;

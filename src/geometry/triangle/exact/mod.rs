@@ -32,7 +32,7 @@
 //! even that is undefined (the line lies in the triangle's plane to within `f64` rounding) `t`
 //! is the entry of the triangle's box. [`crate::scene::Geometry`] clamps it into the box.
 
-pub mod expansion;
+mod filter;
 mod lanes;
 #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
 mod lanes_avx;
@@ -40,16 +40,14 @@ mod lanes_avx;
 use super::lanes::{LaneHits, TriangleLanes};
 use super::{Triangle, TriangleKernel, in_interval};
 use crate::geometry::Ray;
-use expansion::ExactSum;
+use crate::geometry::expansion::ExactSum;
+use filter::FILTER;
 use glam::{DVec3, Vec3A};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Exact;
-
-/// `2^-49`: the static filter's constant (see the module docs).
-const FILTER: f64 = 1.0 / (1u64 << 49) as f64;
 
 thread_local! {
     /// Edge functions of this thread whose sign the filter could not decide (counted only on

@@ -2,6 +2,7 @@
 //! exact `f64` differences) on rays built to sit on, or one ulp beside, edges and vertices.
 
 use super::*;
+use crate::geometry::expansion;
 use crate::geometry::reference::{self, Reference};
 use crate::geometry::test_support::unit_floats as lcg;
 use glam::Vec3;

@@ -1,0 +1,35 @@
+//! The [`Index`] trait: what every acceleration structure answers (build, closest hit, any
+//! hit, size and shape), and the hit contract it answers by. Tracing several rays at a time is
+//! the separate [`crate::index::BatchIndex`].
+
+use crate::geometry::{Hit, Ray};
+use crate::index::{BuildError, IndexInfo, Stats};
+use crate::scene::Geometry;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use std::fmt::Debug;
+
+/// An acceleration structure.
+///
+/// Contract: for every valid ray, [`Index::closest_hit`] returns exactly what [`crate::index::BruteForce`]
+/// returns (same primitive, bit-identical `t`, ties at equal `t` to the lowest primitive id), and
+/// [`Index::any_hit`] returns `closest_hit(..).is_some()`. Queries never allocate.
+pub trait Index: Sized + Send + Sync + 'static {
+    /// Typed build parameters. `Deserialize` with unknown fields rejected, so parameters can
+    /// come from the command line (`bvh:leaf_size=4`) and scene files; `Default` is the preset
+    /// the suite uses.
+    type Params: Default + Clone + Debug + Serialize + DeserializeOwned + Send + Sync;
+
+    /// Builds the index over `geom`. Fails with a clear error on absurd parameters.
+    fn build<G: Geometry>(geom: &G, params: &Self::Params) -> Result<Self, BuildError>;
+
+    /// The closest hit in `[ray.t_min, ray.t_max]`.
+    fn closest_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S)
+    -> Option<Hit>;
+
+    /// Whether any primitive is hit in `[ray.t_min, ray.t_max]` (stops at the first).
+    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool;
+
+    /// Size and shape (the registry fills in `build_time`).
+    fn info(&self) -> IndexInfo;
+}

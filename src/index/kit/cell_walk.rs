@@ -1,0 +1,112 @@
+//! The structures that hand a ray's cells to a visitor front to back ([`CellWalk`]: grid,
+//! two-level grid, octree) share their closest-hit and any-hit queries here, each primitive
+//! tested at most once per ray ([`super::mailbox`]).
+
+use super::mailbox::with_mailbox;
+use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::index::Stats;
+use crate::scene::Geometry;
+
+/// A structure that hands a ray's cells (grid cells, octree leaves) to a visitor front to back.
+///
+/// Contract of [`CellWalk::for_each_cell`]: `visit` receives the primitive ids of each cell the
+/// ray meets, in increasing order of the cells' `t` intervals, and returns the current cutoff
+/// (the best `t`, `ray.t_max` while nothing is found, or `-inf` to stop at once); the walk stops
+/// after a cell whose exit parameter is `>=` the cutoff, or when the ray leaves the structure.
+/// Every primitive whose hit at `t <= cutoff` could beat the best so far lies in a cell handed
+/// over before the walk stops (each implementation documents why). A cell may be left out when
+/// none of its primitives can hit within `[t_min, cutoff]`.
+pub trait CellWalk {
+    fn for_each_cell<S: Stats>(&self, ray: &Ray, stats: &mut S, visit: impl CellVisit<S>);
+}
+
+/// The visitor [`CellWalk::for_each_cell`] calls per cell: the cell's primitive ids and the
+/// counters in, the cutoff out.
+pub trait CellVisit<S>: FnMut(&[u32], &mut S) -> f32 {}
+
+impl<S, F: FnMut(&[u32], &mut S) -> f32> CellVisit<S> for F {}
+
+/// Whether primitive `prim` can hit `ray` within `[ray.t_min, cutoff]`: its bounds' slab test
+/// first (one box test, counted), then the shared kernel ([`Geometry::intersect`], one primitive
+/// test, counted) only for a ray that meets its bounds.
+///
+/// Exact: [`Geometry::intersect`] clamps the kernel's `t` into the slab interval of the
+/// primitive's own bounds and rejects a hit when that interval is empty, computing the interval
+/// with the same [`crate::geometry::Aabb::ray_interval`]; a clamped `t` in `[t_min, cutoff]`
+/// therefore lies in the interval clipped to `[t_min, cutoff]`, which is then not empty. So a
+/// primitive rejected here is one the kernel would reject too. In a grid cell most primitives
+/// are small against the cell and most rays crossing it miss their bounds, so this skips most
+/// kernel calls for the price of a slab test.
+#[inline(always)]
+fn hit_within<G: Geometry, S: Stats>(
+    geom: &G,
+    prim: u32,
+    ray: &Ray,
+    cutoff: f32,
+    stats: &mut S,
+) -> Option<f32> {
+    stats.box_tests(1);
+    geom.bounds(prim).ray_interval(ray, ray.t_min, cutoff)?;
+    stats.prim_test();
+    geom.intersect(prim, ray, cutoff)
+}
+
+/// The closest hit along `walk`: each primitive tested at most once (the mailbox), through the
+/// shared kernel ([`Geometry::intersect`], after its bounds: [`hit_within`]), ties at equal `t`
+/// to the lowest id ([`ClosestHit::offer`]). A primitive rejected once stays rejected, because
+/// the best `t` only shrinks.
+#[inline]
+pub fn closest_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
+    walk: &W,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> Option<Hit> {
+    with_mailbox(geom.len(), |mb| {
+        let mut best = ClosestHit::new(ray.t_max);
+        walk.for_each_cell(ray, stats, |prims, stats| {
+            for &prim in prims {
+                if mb.first_visit(prim)
+                    && let Some(t) = hit_within(geom, prim, ray, best.t(), stats)
+                {
+                    best.offer(t, prim);
+                }
+            }
+            best.t()
+        });
+        best.get()
+    })
+}
+
+/// Whether any primitive along `walk` is hit within `[t_min, t_max]` (stops at the first).
+#[inline]
+pub fn any_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
+    walk: &W,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> bool {
+    with_mailbox(geom.len(), |mb| {
+        let mut found = false;
+        walk.for_each_cell(ray, stats, |prims, stats| {
+            found = prims.iter().any(|&p| {
+                mb.first_visit(p) && hit_within(geom, p, ray, ray.t_max, stats).is_some()
+            });
+            if found { f32::NEG_INFINITY } else { ray.t_max }
+        });
+        found
+    })
+}
+
+/// The `closest_hit` and `any_hit` methods of an [`Index`](crate::index::Index) impl for a type
+/// that is a [`CellWalk`]: the shared mailboxed queries above.
+macro_rules! cell_walk_queries {
+    () => {
+        $crate::index::kit::ray_queries!(
+            $crate::index::kit::cell_walk::closest_hit_in_cells,
+            $crate::index::kit::cell_walk::any_hit_in_cells,
+            |index| index
+        );
+    };
+}
+pub(crate) use cell_walk_queries;

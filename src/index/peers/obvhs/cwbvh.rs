@@ -1,0 +1,106 @@
+//! `obvhs-cwbvh`: obvhs's compressed wide BVH8 (PLOC build, reinsertion, BVH2 to CWBVH) and its
+//! `traverse!` loop with its SIMD node test, with our kernel and our closest-hit order in the
+//! primitive step.
+
+use super::tree::{Obvhs, ObvhsTree};
+use super::{culling_bound, obvhs_ray};
+use crate::geometry::Ray;
+use crate::index::{IndexInfo, Stats};
+use glam::UVec2;
+use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb;
+use obvhs::cwbvh::{CwBvh, builder::build_cwbvh, node::CwBvhNode};
+use std::time::Duration;
+
+/// obvhs's compressed wide BVH8 as an index (`obvhs-cwbvh`).
+pub type ObvhsCwBvh = Obvhs<CwBvhPeer>;
+
+/// obvhs's `CwBvh` over the scene's primitive bounds.
+#[derive(Clone)]
+pub struct CwBvhPeer {
+    bvh: CwBvh,
+    depth: usize,
+    leaves: usize,
+}
+
+impl ObvhsTree for CwBvhPeer {
+    const NAME: &'static str = "obvhs-cwbvh";
+
+    fn build(boxes: &[Aabb], params: BvhBuildParams, time: &mut Duration) -> Self {
+        let bvh = build_cwbvh(boxes, params, time);
+        let (depth, leaves) = shape(&bvh);
+        CwBvhPeer { bvh, depth, leaves }
+    }
+
+    /// obvhs's `traverse!` loop with its SIMD node test. `prim` returning `false` leaves the
+    /// current leaf's primitives only: obvhs's loop has no exit from the whole walk.
+    #[inline(always)]
+    fn walk<S: Stats>(
+        &self,
+        ray: &Ray,
+        stats: &mut S,
+        mut prim: impl FnMut(u32, &mut S, &mut obvhs::ray::Ray) -> bool,
+    ) {
+        let mut oray = obvhs_ray(ray, culling_bound(ray.t_max));
+        let mut state = self.bvh.new_traversal(oray.direction);
+        let mut node: &CwBvhNode;
+        let ids = &self.bvh.primitive_indices;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            {
+                stats.node_visit();
+                stats.box_tests(node.child_meta.iter().filter(|&&m| m != 0).count() as u32);
+                node.intersect_ray(&oray, state.oct_inv4)
+            },
+            {
+                if !prim(ids[state.primitive_id as usize], stats, &mut oray) {
+                    break;
+                }
+            }
+        );
+    }
+
+    fn info(&self) -> IndexInfo {
+        let nodes = self.bvh.nodes.len();
+        let prims = self.bvh.primitive_indices.len();
+        let exact = self.bvh.exact_node_aabbs.as_ref().map_or(0, |v| v.len());
+        let memory_bytes =
+            nodes * size_of::<CwBvhNode>() + prims * 4 + exact * size_of::<obvhs::aabb::Aabb>();
+        IndexInfo {
+            nodes,
+            leaves: self.leaves,
+            depth: self.depth,
+            memory_bytes,
+            prim_refs: prims,
+            extra: vec![("bytes_per_prim".into(), memory_bytes as f64 / prims as f64)],
+            ..IndexInfo::default()
+        }
+    }
+}
+
+/// Levels (root = 1, leaves counted as a level below their node) and leaf children.
+fn shape(bvh: &CwBvh) -> (usize, usize) {
+    if bvh.nodes.is_empty() {
+        return (0, 0);
+    }
+    let parents = bvh.compute_parents();
+    let mut leaves = 0;
+    let mut depth = 1;
+    for (i, node) in bvh.nodes.iter().enumerate() {
+        // Walk up to the root (parents[0] == 0).
+        let (mut at, mut l) = (i, 1);
+        while at != 0 {
+            at = parents[at] as usize;
+            l += 1;
+        }
+        for ch in 0..8 {
+            if !node.is_child_empty(ch) && node.is_leaf(ch) {
+                leaves += 1;
+                depth = depth.max(l + 1);
+            }
+        }
+    }
+    (depth, leaves)
+}

@@ -1,0 +1,81 @@
+//! One [`Index`] implementation for obvhs's trees: obvhs builds the tree over our primitive
+//! bounds and walks it with its own node test; our kernel decides every hit, in our order.
+
+use super::{ObvhsParams, culling_bound, prim_boxes};
+use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::index::kit::{prim_test, ray_queries};
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::scene::Geometry;
+use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb;
+use std::time::Duration;
+
+/// One of obvhs's trees, as [`Obvhs`] needs it.
+pub trait ObvhsTree: Sized + Send + Sync + 'static {
+    /// The registry name, for errors.
+    const NAME: &'static str;
+    /// Builds the tree over the primitives' boxes (scene order) with obvhs's `params`.
+    fn build(boxes: &[Aabb], params: BvhBuildParams, time: &mut Duration) -> Self;
+    /// obvhs's own walk, with our counting: hands each visited primitive (its scene id) to
+    /// `prim` with the stats and obvhs's ray, whose `tmax` `prim` may lower; `prim` returns
+    /// `false` to stop (as far as obvhs's loop allows an exit).
+    fn walk<S: Stats>(
+        &self,
+        ray: &Ray,
+        stats: &mut S,
+        prim: impl FnMut(u32, &mut S, &mut obvhs::ray::Ray) -> bool,
+    );
+    /// Size and shape.
+    fn info(&self) -> IndexInfo;
+}
+
+/// An obvhs tree as our index: a peer with obvhs's box tests and our triangle test.
+#[derive(Clone)]
+pub struct Obvhs<T>(T);
+
+/// The closest hit: obvhs's `tmax` follows the best `t` with [`culling_bound`]'s slack.
+#[inline]
+fn closest<T: ObvhsTree, G: Geometry, S: Stats>(
+    tree: &T,
+    geom: &G,
+    ray: &Ray,
+    stats: &mut S,
+) -> Option<Hit> {
+    let mut best = ClosestHit::new(ray.t_max);
+    tree.walk(ray, stats, |prim, stats, oray| {
+        if prim_test::closest(&mut best, geom, prim, ray, stats) {
+            oray.tmax = culling_bound(best.t());
+        }
+        true
+    });
+    best.get()
+}
+
+/// Whether any primitive is hit, stopping at the first (as far as obvhs's loop allows).
+#[inline]
+fn any<T: ObvhsTree, G: Geometry, S: Stats>(tree: &T, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+    let mut found = false;
+    tree.walk(ray, stats, |prim, stats, _| {
+        found |= prim_test::any(geom, prim, ray, stats);
+        !found
+    });
+    found
+}
+
+impl<T: ObvhsTree> Index for Obvhs<T> {
+    type Params = ObvhsParams;
+
+    fn build<G: Geometry>(geom: &G, params: &ObvhsParams) -> Result<Self, BuildError> {
+        let boxes = prim_boxes(geom, T::NAME)?;
+        let params = params.preset.build_params();
+        Ok(Obvhs(T::build(&boxes, params, &mut Duration::default())))
+    }
+
+    ray_queries!(closest, any, |index| &index.0);
+
+    fn info(&self) -> IndexInfo {
+        self.0.info()
+    }
+}
+
+impl<T: ObvhsTree> BatchIndex for Obvhs<T> {}

@@ -1,0 +1,53 @@
+//! Building one registered index: its typed parameters from a spec ([`parse_params`]) and the
+//! geometry visitor that picks the concrete [`Geometry`] for the scene ([`build_dyn`]).
+
+use super::spec::IndexSpec;
+use crate::geometry::TriangleKernelKind;
+use crate::index::{BatchIndex, BuildError, Index, TraceIndex, build_index_on};
+use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
+use serde::Deserialize;
+
+/// How the registry builds one of its indices.
+pub(super) type BuildFn =
+    fn(&IndexSpec, &SceneGeometry, TriangleKernelKind) -> Result<Box<dyn TraceIndex>, BuildError>;
+
+/// Parses the typed parameters of `I` from a spec (unknown keys rejected).
+pub fn parse_params<I: Index>(spec: &IndexSpec) -> Result<I::Params, BuildError> {
+    I::Params::deserialize(toml::Value::Table(spec.params.clone())).map_err(|e| {
+        BuildError::Params {
+            index: spec.name.clone(),
+            message: e.to_string(),
+        }
+    })
+}
+
+/// Builds index `I` from `spec` over the scene's primitives with the given kernel.
+pub(super) fn build_dyn<I: BatchIndex>(
+    spec: &IndexSpec,
+    geom: &SceneGeometry,
+    kernel: TriangleKernelKind,
+) -> Result<Box<dyn TraceIndex>, BuildError> {
+    struct Visit<'a, I: BatchIndex> {
+        name: &'a str,
+        params: I::Params,
+    }
+    impl<I: BatchIndex> GeometryVisitor for Visit<'_, I> {
+        type Output = Result<Box<dyn TraceIndex>, BuildError>;
+        fn visit<G: Geometry>(self, geom: G) -> Self::Output {
+            Ok(Box::new(build_index_on::<I, G>(
+                self.name,
+                geom,
+                self.params,
+            )?))
+        }
+    }
+    let params = parse_params::<I>(spec)?;
+    with_geometry(
+        geom,
+        kernel,
+        Visit::<I> {
+            name: &spec.name,
+            params,
+        },
+    )
+}

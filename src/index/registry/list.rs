@@ -1,0 +1,152 @@
+//! The list of every index the suite knows ([`REGISTRY`], in report order) and whose tests each
+//! uses ([`Kind`]), the lookups by name, and building an index from its spec ([`build_index`]).
+
+use super::build::{BuildFn, build_dyn};
+use super::spec::{IndexSpec, parse_params_list};
+use crate::geometry::TriangleKernelKind;
+use crate::index::peers::{ObvhsBvh2, ObvhsCwBvh};
+use crate::index::{
+    BatchIndex, BruteForce, Bsp, BuildError, Bvh, Bvh4, Bvh8, Grid, Grid2, KdTree, NeighborOctree,
+    TopDownOctree, TraceIndex,
+};
+use crate::scene::SceneGeometry;
+use std::str::FromStr;
+
+/// Whose triangle and box tests an index uses, which decides what a mismatch means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Ours: bound by the hit contract (brute force's hits, bit for bit); a mismatch is a bug.
+    Ours,
+    /// A peer (obvhs, ...) with its own triangle or box tests: its mismatches are reported, and
+    /// callers decide whether they fail a run.
+    Peer,
+}
+
+struct Entry {
+    name: &'static str,
+    build: BuildFn,
+    kind: Kind,
+}
+
+const fn entry<I: BatchIndex>(name: &'static str, kind: Kind) -> Entry {
+    Entry {
+        name,
+        build: build_dyn::<I>,
+        kind,
+    }
+}
+
+/// Every index the suite knows, in report order. Adding an index is one line here; it is then
+/// in `run`, `verify`, `stress`, `render`, the agreement and property tests and the benches.
+#[rustfmt::skip]
+const REGISTRY: &[Entry] = &[
+    entry::<BruteForce>("brute", Kind::Ours),
+    entry::<Bvh>("bvh", Kind::Ours),
+    entry::<Bvh4>("bvh4", Kind::Ours),
+    entry::<Bvh8>("bvh8", Kind::Ours),
+    entry::<Grid>("grid", Kind::Ours),
+    entry::<Grid2>("grid2", Kind::Ours),
+    entry::<NeighborOctree>("octree", Kind::Ours),
+    entry::<TopDownOctree>("octree-topdown", Kind::Ours),
+    entry::<KdTree>("kdtree", Kind::Ours),
+    entry::<Bsp>("bsp", Kind::Ours),
+    entry::<ObvhsBvh2>("obvhs-bvh2", Kind::Peer),
+    entry::<ObvhsCwBvh>("obvhs-cwbvh", Kind::Peer),
+    #[cfg(feature = "embree")]
+    entry::<crate::index::peers::embree::Embree>("embree", Kind::Peer),
+    #[cfg(feature = "embree")]
+    entry::<crate::index::peers::embree::EmbreeFast>("embree-fast", Kind::Peer),
+    #[cfg(feature = "embree")]
+    entry::<crate::index::peers::embree::EmbreeP16>("embree-p16", Kind::Peer),
+    #[cfg(feature = "tinybvh")]
+    entry::<crate::index::peers::tinybvh::TinyBvh8>("tinybvh-bvh8", Kind::Peer),
+];
+
+/// Names of all registered indices, in report order.
+pub fn index_names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|e| e.name).collect()
+}
+
+/// Whether `name` is a registered peer ([`Kind::Peer`]): its mismatches are reported, not
+/// failed. The one place that answers this.
+pub fn is_peer(name: &str) -> bool {
+    REGISTRY
+        .iter()
+        .any(|e| e.name == name && e.kind == Kind::Peer)
+}
+
+/// Names of the registered peers, in report order.
+pub fn peer_names() -> Vec<&'static str> {
+    REGISTRY
+        .iter()
+        .filter(|e| e.kind == Kind::Peer)
+        .map(|e| e.name)
+        .collect()
+}
+
+impl FromStr for IndexSpec {
+    type Err = BuildError;
+
+    fn from_str(s: &str) -> Result<IndexSpec, BuildError> {
+        let (name, rest) = s.split_once(':').unwrap_or((s, ""));
+        let name = name.trim();
+        if !REGISTRY.iter().any(|e| e.name == name) {
+            return Err(unknown(name));
+        }
+        Ok(IndexSpec {
+            name: name.to_owned(),
+            params: parse_params_list(name, rest)?,
+        })
+    }
+}
+
+fn unknown(name: &str) -> BuildError {
+    BuildError::UnknownIndex(name.to_owned(), index_names().join(", "))
+}
+
+/// Builds the index `spec` over a scene's primitives with the given triangle kernel.
+pub fn build_index(
+    spec: &IndexSpec,
+    geom: &SceneGeometry,
+    kernel: TriangleKernelKind,
+) -> Result<Box<dyn TraceIndex>, BuildError> {
+    let entry = REGISTRY
+        .iter()
+        .find(|e| e.name == spec.name)
+        .ok_or_else(|| unknown(&spec.name))?;
+    if geom.is_empty() {
+        return Err(BuildError::EmptyScene);
+    }
+    (entry.build)(spec, geom, kernel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spec_parsing() {
+        let s: IndexSpec = "brute".parse().unwrap();
+        assert_eq!(s, IndexSpec::named("brute"));
+        assert!(matches!(
+            "nope".parse::<IndexSpec>(),
+            Err(BuildError::UnknownIndex(..))
+        ));
+        let s: IndexSpec = "brute:a=1,b=[1,2,3],c=\"x,y\"".parse().unwrap();
+        assert_eq!(s.params.len(), 3);
+        assert_eq!(s.to_string(), "brute:a=1,b=[1, 2, 3],c=\"x,y\"");
+        assert!(matches!(
+            "brute:oops".parse::<IndexSpec>(),
+            Err(BuildError::Params { .. })
+        ));
+        // Unknown keys are rejected by the typed parameters.
+        let g = SceneGeometry {
+            triangles: std::sync::Arc::from(crate::scene::generators::icosphere(0)),
+            ..Default::default()
+        };
+        let err = build_index(&s, &g, TriangleKernelKind::Watertight)
+            .err()
+            .unwrap();
+        assert!(err.to_string().contains("unknown field"), "{err}");
+    }
+}

@@ -1,0 +1,10 @@
+//! Run-time selection of indices by name (`bvh`, `grid:lambda=4`, ...): the list of every index
+//! ([`list`]), the spec parser ([`spec`]) and the build of one ([`build`]).
+
+mod build;
+mod list;
+mod spec;
+
+pub use build::parse_params;
+pub use list::{Kind, build_index, index_names, is_peer, peer_names};
+pub use spec::IndexSpec;

@@ -1,0 +1,105 @@
+//! How an index traces several rays at a time ([`BatchIndex`]): its own batch technique
+//! (`stream`) and packets of neighbouring rays, by default one [`Index`] query per ray
+//! ([`each_closest`], [`each_any`]). A trait apart from [`Index`], so the query trait imports
+//! nothing of the tracing machinery.
+
+use crate::geometry::{Hit, Ray};
+use crate::index::{Index, Stats};
+use crate::scene::Geometry;
+
+/// An index's batch techniques. Every index implements it (`impl BatchIndex for X {}` keeps
+/// the defaults); one with a technique of its own overrides the methods and sets the flags.
+pub trait BatchIndex: Index {
+    /// Whether the index has a batch technique of its own ([`BatchIndex::closest_hits_stream`] is
+    /// overridden): the suite then gives it `INDEX+stream` rows. An index without one has no
+    /// stream row; the verdict lets its one-at-a-time row stand for it.
+    const STREAM: bool = false;
+
+    /// Whether one-query-at-a-time rows of the index measure anything of its own: `false` for
+    /// an index that exists only as a batch technique over another index's single rays
+    /// (`embree-p16`), which then gets only `+stream` rows.
+    const SINGLE: bool = true;
+
+    /// Closest hits of a chunk of consecutive rays of a batch (the harness's parallel work item,
+    /// at most 64 rays; image order for camera sets; `out` and `stats` as long as `rays`) with
+    /// the index's own batch technique ([`super::TraceMode::Stream`]). By default
+    /// [`Index::closest_hit`] per ray; an index that traces several rays at a time (interleaved
+    /// walks in `bvh4`/`bvh8`, Embree's 16-ray packets in `embree-p16`) overrides it and sets
+    /// [`BatchIndex::STREAM`].
+    #[inline]
+    fn closest_hits_stream<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        each_closest(self, geom, rays, out, stats);
+    }
+
+    /// Any-hit results of a chunk, as [`BatchIndex::closest_hits_stream`].
+    #[inline]
+    fn any_hits_stream<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        each_any(self, geom, rays, out, stats);
+    }
+
+    /// Closest hits of a packet of neighbouring rays (at most [`super::MAX_PACKET`]; `out` and `stats`
+    /// as long as `rays`). By default ray by ray; an index with packet traversal overrides it.
+    #[inline]
+    fn closest_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        each_closest(self, geom, rays, out, stats);
+    }
+
+    /// Any-hit results of a packet, as [`BatchIndex::closest_hits_packet`].
+    #[inline]
+    fn any_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        each_any(self, geom, rays, out, stats);
+    }
+}
+
+/// Closest hits of `rays`, one [`Index::closest_hit`] per ray (`out` and `stats` as long as
+/// `rays`).
+#[inline]
+pub fn each_closest<I: Index, G: Geometry, S: Stats>(
+    index: &I,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [Option<Hit>],
+    stats: &mut [S],
+) {
+    for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
+        *o = index.closest_hit(geom, r, s);
+    }
+}
+
+/// Any-hit results of `rays`, one [`Index::any_hit`] per ray.
+#[inline]
+pub fn each_any<I: Index, G: Geometry, S: Stats>(
+    index: &I,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [bool],
+    stats: &mut [S],
+) {
+    for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
+        *o = index.any_hit(geom, r, s);
+    }
+}

@@ -1,0 +1,96 @@
+//! A built index bound to the geometry it was built on ([`BoundIndex`], built by
+//! [`build_index_on`]): the object-safe [`TraceIndex`] of the harness, whose batch calls trace in
+//! parallel ([`super::parallel`]).
+
+use super::batch::BatchIndex;
+use super::mode::TraceMode;
+use super::parallel::trace_in_parallel;
+use super::query::{AnyHit, Closest};
+use super::trace_index::TraceIndex;
+use crate::geometry::{Hit, Ray};
+use crate::index::{BuildError, Counters, Index, IndexInfo, NoStats};
+use crate::scene::Geometry;
+use std::time::Instant;
+
+/// Builds index `I` over a concrete geometry (for tests and benches that want static types).
+pub fn build_index_on<I: Index, G: Geometry>(
+    name: &str,
+    geom: G,
+    params: I::Params,
+) -> Result<BoundIndex<I, G>, BuildError> {
+    if geom.is_empty() {
+        return Err(BuildError::EmptyScene);
+    }
+    let start = Instant::now();
+    let index = I::build(&geom, &params)?;
+    let build_time = start.elapsed();
+    let mut info = index.info();
+    info.build_time = build_time;
+    Ok(BoundIndex {
+        params: toml::to_string(&params)
+            .unwrap_or_default()
+            .trim()
+            .replace('\n', ","),
+        name: name.to_owned(),
+        index,
+        geom,
+        info,
+    })
+}
+
+/// A built index with the geometry it was built on.
+pub struct BoundIndex<I: Index, G: Geometry> {
+    pub index: I,
+    pub geom: G,
+    name: String,
+    params: String,
+    info: IndexInfo,
+}
+
+impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn params(&self) -> &str {
+        &self.params
+    }
+    fn info(&self) -> &IndexInfo {
+        &self.info
+    }
+    fn has_stream(&self) -> bool {
+        I::STREAM
+    }
+    fn has_single(&self) -> bool {
+        I::SINGLE
+    }
+    fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        self.index.closest_hit(&self.geom, ray, &mut NoStats)
+    }
+    fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit> {
+        self.index.closest_hit(&self.geom, ray, counters)
+    }
+    fn any_hit(&self, ray: &Ray) -> bool {
+        self.index.any_hit(&self.geom, ray, &mut NoStats)
+    }
+    fn any_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> bool {
+        self.index.any_hit(&self.geom, ray, counters)
+    }
+    fn closest_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        counters: Option<&mut [Counters]>,
+    ) {
+        trace_in_parallel::<Closest, _, _>(&self.index, &self.geom, mode, rays, out, counters);
+    }
+    fn any_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [bool],
+        counters: Option<&mut [Counters]>,
+    ) {
+        trace_in_parallel::<AnyHit, _, _>(&self.index, &self.geom, mode, rays, out, counters);
+    }
+}

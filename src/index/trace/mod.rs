@@ -1,0 +1,18 @@
+//! The tracing machinery: how a batch of rays is traced through any index. The trace modes
+//! ([`mode`]), the batch techniques an index may have ([`batch`]), the query kinds ([`query`]),
+//! the last-hit cache ([`last_hit`]), one worker's chunk ([`chunk`]), the parallel driver
+//! ([`parallel`]) and the object-safe [`TraceIndex`] of a built index ([`bound`]).
+
+pub mod batch;
+pub mod bound;
+pub mod chunk;
+pub mod last_hit;
+pub mod mode;
+pub mod parallel;
+pub mod query;
+pub mod trace_index;
+
+pub use batch::BatchIndex;
+pub use bound::{BoundIndex, build_index_on};
+pub use mode::{MAX_PACKET, ModeFamily, TraceMode};
+pub use trace_index::TraceIndex;

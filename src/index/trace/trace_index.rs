@@ -1,0 +1,68 @@
+//! The object-safe face of a built index ([`TraceIndex`]) that the harness, the CLI and reports
+//! use. The virtual call happens once per batch of rays; inside, traversal is monomorphized for
+//! the index, the geometry and the stats.
+
+use super::mode::TraceMode;
+use crate::geometry::{Hit, Ray};
+use crate::index::{Counters, IndexInfo};
+
+/// The object-safe face of a built index. Batch methods run in parallel on the current rayon
+/// pool (`ThreadPool::install` picks the thread count); single-ray methods are for callers that
+/// do per-ray work around the query (rendering).
+pub trait TraceIndex: Send + Sync {
+    /// Registry name (`bvh`, `grid`, ...).
+    fn name(&self) -> &str;
+    /// The parameters it was built with, as `key=value` pairs.
+    fn params(&self) -> &str;
+    fn info(&self) -> &IndexInfo;
+    /// Whether the index has a batch technique of its own ([`crate::index::BatchIndex::STREAM`]).
+    fn has_stream(&self) -> bool;
+    /// Whether its one-query-at-a-time rows are its own ([`crate::index::BatchIndex::SINGLE`]).
+    fn has_single(&self) -> bool;
+    /// Whether the suite traces it in `mode`: `stream` only with a batch technique of its own,
+    /// the one-at-a-time modes only when they are its own.
+    fn traces_in(&self, mode: TraceMode) -> bool {
+        match mode {
+            TraceMode::Stream => self.has_stream(),
+            TraceMode::Single | TraceMode::LastHit => self.has_single(),
+            TraceMode::Packets(_) => true,
+        }
+    }
+    fn closest_hit(&self, ray: &Ray) -> Option<Hit>;
+    fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit>;
+    fn any_hit(&self, ray: &Ray) -> bool;
+    fn any_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> bool;
+    /// Closest hits of a batch (`out.len() == rays.len()`) traced in `mode`, with per-ray
+    /// counters (reset first) when `counters` is given.
+    fn closest_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        counters: Option<&mut [Counters]>,
+    );
+    /// Any-hit results of a batch traced in `mode`, as [`TraceIndex::closest_hits_in`].
+    fn any_hits_in(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        out: &mut [bool],
+        counters: Option<&mut [Counters]>,
+    );
+    /// Closest hits of a batch (`out.len() == rays.len()`), no counting.
+    fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        self.closest_hits_in(TraceMode::Single, rays, out, None);
+    }
+    /// Any-hit results of a batch, no counting.
+    fn any_hits(&self, rays: &[Ray], out: &mut [bool]) {
+        self.any_hits_in(TraceMode::Single, rays, out, None);
+    }
+    /// Closest hits with per-ray counters.
+    fn closest_hits_counted(&self, rays: &[Ray], out: &mut [Option<Hit>], c: &mut [Counters]) {
+        self.closest_hits_in(TraceMode::Single, rays, out, Some(c));
+    }
+    /// Any-hit results with per-ray counters.
+    fn any_hits_counted(&self, rays: &[Ray], out: &mut [bool], c: &mut [Counters]) {
+        self.any_hits_in(TraceMode::Single, rays, out, Some(c));
+    }
+}
