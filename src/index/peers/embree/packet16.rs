@@ -1,9 +1,9 @@
 //! `embree-p16`: the robust Embree scene of `embree` traced 16 consecutive rays at a time with
 //! `rtcIntersect16` / `rtcOccluded16`, to show what Embree's packets give on coherent rays.
 //!
-//! Its rows are stream rows only (`embree-p16+stream`, [`Index::SINGLE`] is false: its single
+//! Its rows are stream rows only (`embree-p16+stream`, [`BatchIndex::SINGLE`] is false: its single
 //! rays would be `embree`'s). The harness hands every worker chunks of consecutive rays
-//! ([`Index::closest_hits_stream`]); a
+//! ([`BatchIndex::closest_hits_stream`]); a
 //! chunk is cut into packets of 16 (the last one of a batch shorter, its missing lanes switched
 //! off in the valid mask). Primary rays are row-major, and chunks (64 rays) and rows (a multiple
 //! of 16 pixels at the protocol's sizes) start on a multiple of 16, so a packet is a segment of
