@@ -7,6 +7,7 @@ mod partition_kit;
 
 mod accuracy;
 mod agreement;
+mod bounded_reads;
 mod bsp;
 mod bvh;
 mod cameras;
