@@ -14,6 +14,7 @@ mod cameras;
 mod cli;
 mod compare;
 mod full_disk;
+mod fuzz;
 mod grid;
 mod grid2;
 mod kdtree;
