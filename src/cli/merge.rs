@@ -2,7 +2,8 @@
 //! (every K of one N) combined into one report, as if the run had not been split.
 
 use crate::report::merge::{load_shard, merge_shards};
-use crate::report::suite_report::{prepare_report_dir, write_report};
+use crate::report::report_dir::ReportDir;
+use crate::report::suite_report::write_report;
 use crate::report::verdict::{verdict_text, verdicts};
 use anyhow::Context;
 use std::path::PathBuf;
@@ -18,7 +19,8 @@ pub struct MergeArgs {
 }
 
 pub fn run(a: MergeArgs) -> anyhow::Result<()> {
-    prepare_report_dir(&a.out)?;
+    let claim = ReportDir::claim(&a.out)?;
+    let out = claim.path();
     let shards = (a.shards.iter())
         .map(|d| load_shard(d).with_context(|| format!("reading shard {}", d.display())))
         .collect::<anyhow::Result<Vec<_>>>()?;
@@ -27,7 +29,7 @@ pub fn run(a: MergeArgs) -> anyhow::Result<()> {
     let (meta, rows, notes) = merge_shards(shards, command)?;
     // The pictures each shard rendered, and the mismatches each kept.
     for p in &notes.pictures {
-        let to = a.out.join(&p.path);
+        let to = out.join(&p.path);
         if let Some(from) = dirs.iter().map(|d| d.join(&p.path)).find(|f| f.is_file()) {
             std::fs::create_dir_all(to.parent().expect("a file path has a parent"))?;
             std::fs::copy(&from, &to).with_context(|| format!("copying {}", from.display()))?;
@@ -38,9 +40,10 @@ pub fn run(a: MergeArgs) -> anyhow::Result<()> {
         mismatches.push_str(&std::fs::read_to_string(d.join("mismatches.txt")).unwrap_or_default());
     }
     if !mismatches.is_empty() {
-        std::fs::write(a.out.join("mismatches.txt"), mismatches)?;
+        std::fs::write(out.join("mismatches.txt"), mismatches)?;
     }
-    write_report(&a.out, &meta, &rows, &notes)
+    write_report(out, &meta, &rows, &notes)
+        .and_then(|()| claim.publish())
         .with_context(|| format!("writing the merged report to {}", a.out.display()))?;
     print!("{}", verdict_text(&verdicts(&rows), 4));
     println!("\nreport: {}", a.out.join("index.html").display());

@@ -1,5 +1,6 @@
 //! `accelbench rays`: write a protocol or camera-model ray set of a scene.
 
+use crate::harness::memory::{Budget, Need, rays_bytes};
 use crate::rays::{RaySetKind, ray_set, write_rays};
 use crate::scene::load_scene;
 use anyhow::Context;
@@ -27,9 +28,29 @@ pub struct RaysArgs {
     /// lens and time samples [default: 19].
     #[arg(long)]
     seed: Option<u64>,
+    /// The memory the ray set may take (`512M`, `4G`; 1024-based): a set over it is refused
+    /// before it is made [default: 80% of the available memory].
+    #[arg(long, value_parser = crate::harness::memory::parse_bytes)]
+    memory_budget: Option<u64>,
+}
+
+/// The set's rays, what they are and the option that sets their number.
+fn planned(a: &RaysArgs) -> Need {
+    let (rays, lower) = match a.set {
+        RaySetKind::Incoherent => (a.count, format!("--count ({})", a.count)),
+        _ => (u64::from(a.size).pow(2), format!("--size ({})", a.size)),
+    };
+    Need {
+        bytes: rays_bytes(rays),
+        what: format!("{rays} {} rays", a.set.name()),
+        lower,
+    }
 }
 
 pub fn run(a: RaysArgs) -> anyhow::Result<()> {
+    if let Some(budget) = Budget::of(a.memory_budget) {
+        budget.check(&planned(&a))?;
+    }
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
     let b = scene.ray_set_bounds();
     let rays = ray_set(a.set, &b, a.size, a.count as usize, a.seed)?;

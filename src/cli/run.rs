@@ -1,20 +1,23 @@
 //! `accelbench run`: the suite. Every scene x index x ray set x thread count, timed and counted,
-//! every hit verified, and a report under `reports/<run id>/`.
+//! every hit verified, and a report under `reports/<run id>/`, written whole into place at the
+//! end ([`ReportDir`]) with its status: `complete`, `interrupted` (SIGINT) or `failed: ...`.
 
 use super::parse_threads;
 use super::suite_args::SuiteArgs;
-use crate::harness::suite::{check_specs, run_suite_with};
+use crate::harness::interrupt;
+use crate::harness::suite::{SuiteResult, check_specs, run_suite_with};
 use crate::harness::workload::RaySet;
 use crate::index::{TraceIndex, build_index};
 use crate::render::{Picture, RenderOptions, write_scene_pictures};
+use crate::report::report_dir::ReportDir;
 use crate::report::run_notes::PictureRef;
-use crate::report::suite_report::{RunMeta, prepare_report_dir, run_id_now, write_suite_report};
+use crate::report::suite_report::{RunMeta, RunStatus, run_id_now, write_suite_report};
 use crate::report::verdict::{verdict_text, verdicts};
 use crate::scene::Scene;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
@@ -107,11 +110,9 @@ impl ScenePictures {
         }
     }
 
-    /// The pictures written, by paths relative to the report folder `report`.
-    fn into_refs(self, report: &std::path::Path) -> anyhow::Result<Vec<PictureRef>> {
-        if let Some(e) = self.error {
-            return Err(e);
-        }
+    /// The pictures written, by paths relative to the report folder `report`, and the error
+    /// that stopped the rendering, if one did.
+    fn into_refs(self, report: &Path) -> (Vec<PictureRef>, Option<anyhow::Error>) {
         let rel = |p: &Picture| {
             let r = p.path.strip_prefix(report).unwrap_or(&p.path);
             let parts: Vec<String> = r
@@ -120,7 +121,7 @@ impl ScenePictures {
                 .collect();
             parts.join("/")
         };
-        Ok(self
+        let refs = self
             .written
             .iter()
             .flat_map(|(scene, pics)| {
@@ -130,8 +131,61 @@ impl ScenePictures {
                     path: rel(p),
                 })
             })
-            .collect())
+            .collect();
+        (refs, self.error)
     }
+}
+
+/// `run` stopped by a SIGINT; the command exits with 130, the shell's code for it.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "interrupted: the report in {0} holds the ray sets finished before the SIGINT (status: interrupted)"
+)]
+pub struct Interrupted(pub PathBuf);
+
+/// How the run ended, and the error the command ends with when it did not end well: our
+/// indices' mismatches, their failures, or a failed rendering (each keeps what was measured).
+fn outcome(
+    res: &SuiteResult,
+    dir: &Path,
+    pictures: Option<anyhow::Error>,
+) -> (RunStatus, Option<anyhow::Error>) {
+    if res.interrupted {
+        return (RunStatus::Interrupted, Some(Interrupted(dir.into()).into()));
+    }
+    if res.mismatch_total > 0 {
+        let status = format!(
+            "verification failed, {} mismatching results",
+            res.mismatch_total
+        );
+        let e = anyhow::anyhow!(
+            "verification failed: {} mismatching results; the rays are in {}",
+            res.mismatch_total,
+            dir.join("mismatches.txt").display()
+        );
+        return (RunStatus::Failed(status), Some(e));
+    }
+    if res.failure_total > 0 {
+        let status = format!("{} failures of our indices", res.failure_total);
+        let e = anyhow::anyhow!(
+            "some of our indices failed (the report has the rest):\n{}",
+            failure_lines(res).join("\n")
+        );
+        return (RunStatus::Failed(status), Some(e));
+    }
+    match pictures {
+        Some(e) => (RunStatus::Failed(format!("{e:#}")), Some(e)),
+        None => (RunStatus::Complete, None),
+    }
+}
+
+/// Every failure note, `scene / what: reason`.
+fn failure_lines(res: &SuiteResult) -> Vec<String> {
+    res.notes
+        .iter()
+        .filter(|n| n.is_failure())
+        .map(|n| format!("{} / {}: {}", n.scene, n.what, n.reason))
+        .collect()
 }
 
 pub fn run(mut a: RunArgs) -> anyhow::Result<()> {
@@ -153,15 +207,17 @@ pub fn run(mut a: RunArgs) -> anyhow::Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("reports").join(&run_id));
-    prepare_report_dir(&dir)?;
+    let claim = ReportDir::claim(&dir)?;
     check_specs(&cfg.indices, cfg.kernel)?;
     let scenes = a.suite.load_scenes()?;
+    a.suite.check_memory(&scenes, &cfg)?;
+    interrupt::stop_on_sigint().context("installing the SIGINT handler")?;
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let pb = progress_bar(a.suite.quiet);
     let side = a
         .picture_size
         .unwrap_or(if a.suite.quick { 128 } else { 256 });
-    let mut pictures = ScenePictures::new(dir.join("pictures"), side);
+    let mut pictures = ScenePictures::new(claim.path().join("pictures"), side);
     let kernel = cfg.kernel;
     // Without a terminal (a pipe, a log file, CI) the progress bar is hidden: a line per
     // finished scene says how far the run is instead.
@@ -186,9 +242,17 @@ pub fn run(mut a: RunArgs) -> anyhow::Result<()> {
         },
     )?;
     let names = scenes.iter().map(|s| s.name.clone()).collect();
-    let meta = RunMeta::collect(run_id, command, &cfg, names);
-    write_suite_report(&dir, &meta, &res, pictures.into_refs(&dir)?)
+    let mut meta = RunMeta::collect(run_id, command, &cfg, names);
+    let (pictures, picture_error) = pictures.into_refs(claim.path());
+    let (status, error) = outcome(&res, &dir, picture_error);
+    meta.status = status;
+    write_suite_report(claim.path(), &meta, &res, pictures)
+        .and_then(|()| claim.publish())
         .with_context(|| format!("writing the report to {}", dir.display()))?;
+    // Skips and failures, one line each, also with --quiet (the report has them too).
+    for n in &res.notes {
+        eprintln!("note: {} / {}: {}", n.scene, n.what, n.reason);
+    }
     print!("{}", verdict_text(&verdicts(&res.rows), 4));
     println!(
         "\nreport: {} (tables: {})",
@@ -202,25 +266,5 @@ pub fn run(mut a: RunArgs) -> anyhow::Result<()> {
             res.peer_mismatch_total
         );
     }
-    let failed: Vec<String> = res
-        .notes
-        .iter()
-        .filter(|n| n.is_failure())
-        .map(|n| format!("{} / {}: {}", n.scene, n.what, n.reason))
-        .collect();
-    if res.failure_total == 0 && !failed.is_empty() {
-        eprintln!("note: peers failed (reported):\n{}", failed.join("\n"));
-    }
-    anyhow::ensure!(
-        res.mismatch_total == 0,
-        "verification failed: {} mismatching results; the rays are in {}",
-        res.mismatch_total,
-        dir.join("mismatches.txt").display()
-    );
-    anyhow::ensure!(
-        res.failure_total == 0,
-        "some of our indices failed (the report has the rest):\n{}",
-        failed.join("\n")
-    );
-    Ok(())
+    error.map_or(Ok(()), Err)
 }

@@ -59,6 +59,10 @@ pub struct SuiteArgs {
     /// Shorthand: add `packets4` or `packets8` to `--modes`.
     #[arg(long, value_parser = parse_packet_size)]
     pub packets: Option<usize>,
+    /// The memory the ray sets may take (`512M`, `4G`; 1024-based): a run whose estimate is
+    /// over it is refused before it allocates [default: 80% of the available memory].
+    #[arg(long, value_parser = crate::harness::memory::parse_bytes)]
+    pub memory_budget: Option<u64>,
 }
 
 /// A packet size: 4 or 8.
@@ -190,6 +194,16 @@ impl SuiteArgs {
             }
         }
         v
+    }
+
+    /// Refuses, with one message, a run whose ray sets would take more than `--memory-budget`
+    /// ([`crate::harness::memory::suite_need`]), before any is made.
+    pub fn check_memory(&self, scenes: &[Scene], cfg: &SuiteConfig) -> anyhow::Result<()> {
+        use crate::harness::memory::{Budget, suite_need};
+        match (Budget::of(self.memory_budget), suite_need(scenes, cfg)) {
+            (Some(budget), Some(need)) => budget.check(&need),
+            _ => Ok(()),
+        }
     }
 
     /// The suite configuration for these arguments.

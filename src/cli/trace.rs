@@ -4,7 +4,7 @@
 use super::{parse_kernel, parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
 use crate::index::{Counters, IndexSpec, TraceMode, build_index};
-use crate::rays::{read_rays, write_hits};
+use crate::rays::{read_rays_limit, write_hits};
 use crate::scene::load_scene;
 use anyhow::Context;
 use std::path::PathBuf;
@@ -44,10 +44,7 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
         super::out::refuse_overwriting(&a.rays, hits, "--hits")?;
     }
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
-    let mut rays = read_rays(&a.rays)?;
-    if let Some(limit) = a.limit {
-        rays.truncate(usize::try_from(limit).unwrap_or(usize::MAX));
-    }
+    let rays = read_rays_limit(&a.rays, a.limit)?;
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
     let geom = scene.geometry();
     let index = with_threads(threads, || build_index(&a.index, &geom, a.kernel))??;

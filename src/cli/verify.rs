@@ -18,6 +18,7 @@ pub fn run(a: VerifyArgs) -> anyhow::Result<()> {
         .config(vec![rayon::current_num_threads()], 1, false)?;
     check_specs(&cfg.indices, cfg.kernel)?;
     let scenes = a.suite.load_scenes()?;
+    a.suite.check_memory(&scenes, &cfg)?;
     let res = run_suite(&scenes, &cfg, &progress_bar(a.suite.quiet))?;
     for v in &res.verification {
         println!("{} / {}: {}", v.scene, v.what, v.reason);

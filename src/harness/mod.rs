@@ -1,7 +1,9 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
 pub mod contain;
+pub mod interrupt;
 pub mod median_interval;
+pub mod memory;
 pub mod peer_check;
 pub mod shard;
 pub mod suite;

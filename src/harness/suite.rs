@@ -14,8 +14,12 @@
 //! A contender's failure is contained: a build error, or a panic while building or tracing it
 //! ([`super::contain`]), becomes a note on that contender (`failed: panic at ...`), counted in
 //! [`SuiteResult::failure_total`] when it is ours, and the run goes on without it.
+//!
+//! A SIGINT ([`super::interrupt`]) stops the run before the next ray set (or scene): the result
+//! then holds the sets finished so far and says [`SuiteResult::interrupted`].
 
 use super::contain::contained;
+use super::interrupt;
 pub use super::shard::Shard;
 use super::suite_config::Pools;
 pub use super::suite_config::SuiteConfig;
@@ -76,7 +80,14 @@ pub fn run_suite_with(
         if specs.is_empty() {
             continue;
         }
+        if interrupt::requested() {
+            res.interrupted = true;
+            break;
+        }
         let built = run_scene(scene, &specs, cfg, &pools, progress, build, &mut res);
+        if res.interrupted {
+            break;
+        }
         let refs: Vec<&dyn TraceIndex> = built.iter().map(|b| b.as_ref()).collect();
         if let Err(p) = contained(|| pools.all().install(|| after_scene(scene, &refs))) {
             res.note(scene, "pictures".into(), format!("failed: {p}"));
@@ -152,6 +163,10 @@ fn run_scene(
     };
 
     for &set in &cfg.sets {
+        if interrupt::requested() {
+            res.interrupted = true;
+            return built;
+        }
         let rays = match set {
             RaySet::Primary => primary.clone(),
             RaySet::Incoherent => workload::incoherent(scene, &cfg.sizes),

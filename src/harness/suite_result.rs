@@ -121,6 +121,9 @@ pub struct SuiteResult {
     pub notes: Vec<Note>,
     /// Per scene and set: how brute-force verification covered the rays.
     pub verification: Vec<Note>,
+    /// The run stopped early on a SIGINT ([`super::interrupt`]): the rows are the ray sets
+    /// finished before it.
+    pub interrupted: bool,
 }
 
 impl SuiteResult {

@@ -8,7 +8,8 @@
 //! correct contender) and per contender a `td.ratio` with `data-index` and `data-ratio` (its
 //! Mrays/s over the fastest's, full precision; the text shows two decimals, after `≈ ` for a
 //! tie, and the cell has class `tie`), or a `td.wrong` with `data-index` and `data-wrong` (its
-//! wrong rays) for a contender with wrong results, so tools can read it back.
+//! wrong rays) for a contender with wrong results, so tools can read it back. `p#status` has
+//! the run's status (`meta.json`'s) in `data-status`.
 
 use super::ReportError;
 use super::cost_fit::CostFit;
@@ -64,6 +65,17 @@ pub fn write_html(
         kernel = esc(&meta.kernel),
         repeats = meta.repeats,
         interval = crate::harness::median_interval::describe(meta.repeats),
+    );
+    let _ = writeln!(
+        s,
+        "<p id=\"status\" data-status=\"{}\" class=\"{}\"><b>Status: {}</b></p>",
+        esc(&meta.status.to_string()),
+        if meta.status.is_complete() {
+            "pass"
+        } else {
+            "fail"
+        },
+        esc(&meta.status.sentence())
     );
     s.push_str(&verification_banner(notes));
     s.push_str(&verdict_matrix(rows, verdicts));

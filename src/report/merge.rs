@@ -151,6 +151,13 @@ pub fn merge_shards(
     command: String,
 ) -> Result<(RunMeta, Vec<ResultRow>, RunNotes), ReportError> {
     check_complete(&mut shards)?;
+    if let Some(s) = shards.iter().find(|s| !s.meta.status.is_complete()) {
+        return Err(ReportError::Merge(format!(
+            "{} holds an unfinished run (status: {}): rerun that shard, then merge",
+            s.dir.display(),
+            s.meta.status
+        )));
+    }
     let meta0 = &shards[0].meta;
     let strings = |key: &str| -> Vec<String> {
         (meta0.config[key].as_array().into_iter().flatten())

@@ -10,6 +10,7 @@ mod csv_out;
 mod html;
 mod html_sections;
 pub mod merge;
+pub mod report_dir;
 pub mod results_page;
 mod rows;
 pub mod run_compare;

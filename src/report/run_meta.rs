@@ -28,6 +28,69 @@ pub struct RunMeta {
     pub shard: Shard,
     /// Every parameter of the run: the suite configuration as JSON.
     pub config: serde_json::Value,
+    /// Whether the report holds the whole run ([`RunStatus`]); reports written before the
+    /// field read back as `complete`.
+    #[serde(default)]
+    pub status: RunStatus,
+}
+
+/// How a run ended, `meta.json`'s `status`: `complete` (every measurement made and passed),
+/// `interrupted` (a SIGINT stopped it: the report holds the ray sets finished before), or
+/// `failed: REASON` (it ended with an error, e.g. a mismatch or a failed index of ours: the
+/// report holds what was measured). `complete` exactly when `run` exits 0.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(into = "String", from = "String")]
+pub enum RunStatus {
+    #[default]
+    Complete,
+    Interrupted,
+    Failed(String),
+}
+
+impl RunStatus {
+    pub fn is_complete(&self) -> bool {
+        *self == RunStatus::Complete
+    }
+
+    /// The status and what it means for the report, one sentence (`summary.md`, `index.html`).
+    pub fn sentence(&self) -> String {
+        match self {
+            RunStatus::Complete => "complete: the report holds the whole run.".into(),
+            RunStatus::Interrupted => "interrupted: a SIGINT stopped the run; the report holds \
+                                       the ray sets finished before it."
+                .into(),
+            RunStatus::Failed(why) => {
+                format!("failed: {why}; the report holds what was measured.")
+            }
+        }
+    }
+}
+
+impl std::fmt::Display for RunStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            RunStatus::Complete => f.write_str("complete"),
+            RunStatus::Interrupted => f.write_str("interrupted"),
+            RunStatus::Failed(why) => write!(f, "failed: {why}"),
+        }
+    }
+}
+
+impl From<RunStatus> for String {
+    fn from(s: RunStatus) -> String {
+        s.to_string()
+    }
+}
+
+/// The text `meta.json` holds; anything but `complete` and `interrupted` is a failure.
+impl From<String> for RunStatus {
+    fn from(s: String) -> RunStatus {
+        match s.as_str() {
+            "complete" => RunStatus::Complete,
+            "interrupted" => RunStatus::Interrupted,
+            _ => RunStatus::Failed(s.strip_prefix("failed: ").unwrap_or(&s).to_owned()),
+        }
+    }
 }
 
 impl RunMeta {
@@ -52,6 +115,7 @@ impl RunMeta {
             repeats: config.repeats,
             shard: config.shard,
             config: serde_json::to_value(config).expect("the configuration serializes"),
+            status: RunStatus::Complete,
         }
     }
 }
@@ -114,6 +178,26 @@ fn cpu_model() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_status_reads_back_as_written() {
+        for s in [
+            RunStatus::Complete,
+            RunStatus::Interrupted,
+            RunStatus::Failed("verification: 3 mismatching results".into()),
+        ] {
+            let json = serde_json::to_string(&s).unwrap();
+            assert_eq!(
+                serde_json::from_str::<RunStatus>(&json).unwrap(),
+                s,
+                "{json}"
+            );
+        }
+        assert_eq!(
+            serde_json::to_string(&RunStatus::Failed("x".into())).unwrap(),
+            "\"failed: x\""
+        );
+    }
 
     #[test]
     fn utc_date_format() {

@@ -8,7 +8,7 @@ use super::cost_fit::{CostFit, cost_fits};
 use super::fixed as fmt_f;
 use super::html::write_html;
 use super::rows::{base_index, index_label, scenes, uniq, uniq_threads};
-pub use super::run_meta::{RunMeta, run_id_now};
+pub use super::run_meta::{RunMeta, RunStatus, run_id_now};
 use super::run_notes::{PictureRef, RunNotes, pictures_markdown};
 use super::suite_plots::write_plots;
 use super::verdict::{Verdict, verdicts};
@@ -16,25 +16,6 @@ use super::{ReportError, write_csv};
 use crate::harness::suite::{ResultRow, SuiteResult};
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// Creates the report folder `dir` (if needed) and checks that a file can be written in it, so a
-/// bad `--out` fails before the suite runs rather than after.
-pub fn prepare_report_dir(dir: &Path) -> Result<(), ReportError> {
-    let err = |message: String| ReportError::Write {
-        path: dir.to_owned(),
-        message,
-    };
-    if dir.exists() && !dir.is_dir() {
-        return Err(err(
-            "it is a file, not a folder: give --out a folder (new or existing)".into(),
-        ));
-    }
-    std::fs::create_dir_all(dir).map_err(|e| err(format!("cannot create the folder ({e})")))?;
-    let probe = dir.join(".accelbench-write-check");
-    std::fs::write(&probe, b"")
-        .and_then(|()| std::fs::remove_file(&probe))
-        .map_err(|e| err(format!("cannot write in the folder ({e})")))
-}
 
 /// Writes the whole report of a suite run into `dir`: `mismatches.txt` when there are any,
 /// then [`write_report`].
@@ -263,6 +244,7 @@ pub fn summary_markdown(
         crate::harness::median_interval::describe(meta.repeats)
     );
     let _ = writeln!(s, "Command: `{}`\n", meta.command);
+    let _ = writeln!(s, "**Status: {}**\n", meta.status.sentence());
     if notes.peer_mismatch_total > 0 {
         let _ = writeln!(
             s,

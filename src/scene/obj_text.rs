@@ -4,28 +4,51 @@
 //! them (object, group and material names, comments), where they become U+FFFD.
 
 use super::SceneError;
-use std::borrow::Cow;
+use std::io::Read;
 use std::path::Path;
 
 /// Statements whose arguments are names, which the loader ignores (so their bytes may be any
 /// encoding, e.g. Latin-1 from older exporters).
 const NAME_STATEMENTS: &[&str] = &["o", "g", "usemtl", "mtllib", "s", "mg"];
 
-/// Reads `path` and prepares its text (see the module doc). Errors: unreadable file, or bytes
-/// that are not UTF-8 in a statement the loader reads, with the line.
+/// Bytes at the start of a file checked for a NUL byte: OBJ text has none, and a binary file (a
+/// PLY or glTF mesh, an archive, zeros) almost always has one within them.
+const SNIFF_BYTES: u64 = 64 * 1024;
+
+/// Reads `path` and prepares its text (see the module doc). Errors: unreadable file, a binary
+/// file (a NUL byte in its first [`SNIFF_BYTES`], found before the rest is read), or bytes that
+/// are not UTF-8 in a statement the loader reads, with the line. Holds the file's bytes once
+/// (twice while cutting comments).
 pub fn read_obj_text(path: &Path) -> Result<String, SceneError> {
-    let bytes = std::fs::read(path).map_err(|cause| SceneError::Io {
+    let io = |cause| SceneError::Io {
         path: path.to_owned(),
         cause,
-    })?;
-    let text = match String::from_utf8_lossy(&bytes) {
-        Cow::Borrowed(t) => t.to_owned(),
-        Cow::Owned(lossy) => check_replaced(path, &without_comments(&lossy))?,
     };
-    let text = text
-        .strip_prefix('\u{feff}')
-        .map(str::to_owned)
-        .unwrap_or(text);
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    (&mut file)
+        .take(SNIFF_BYTES)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if let Some(at) = bytes.iter().position(|&b| b == 0) {
+        return Err(SceneError::Obj {
+            path: path.to_owned(),
+            message: format!(
+                "byte {at} is a NUL byte: this is a binary file, not OBJ text; give a Wavefront .obj (text) file"
+            ),
+        });
+    }
+    file.read_to_end(&mut bytes).map_err(io)?;
+    let mut text = match String::from_utf8(bytes) {
+        Ok(t) => t,
+        Err(e) => {
+            let lossy = String::from_utf8_lossy(e.as_bytes()).into_owned();
+            check_replaced(path, &without_comments(&lossy))?
+        }
+    };
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
     Ok(match text.contains('#') {
         true => without_comments(&text),
         false => text,
@@ -81,6 +104,16 @@ mod tests {
     fn comments_are_cut_everywhere_and_the_mark_dropped() {
         let t = text_of("\u{feff}v 0 0 0 # a\n# all\nf 1 2 3#b\n".as_bytes()).unwrap();
         assert_eq!(t, "v 0 0 0 \n\nf 1 2 3\n");
+    }
+
+    #[test]
+    fn a_binary_file_is_refused_by_its_first_nul_byte() {
+        match text_of(b"v 0 0 0\n\0\0\0") {
+            Err(SceneError::Obj { message, .. }) => {
+                assert!(message.starts_with("byte 8 is a NUL byte"), "{message}")
+            }
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]

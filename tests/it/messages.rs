@@ -84,3 +84,128 @@ fn secondary_sets_skipped_on_a_huge_triangle_say_why() {
         },
     );
 }
+
+/// A scene file with `toml` beside a one-triangle `tri.obj`; `info` on it.
+fn scene_file_info(toml: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("tri.obj"), TRIANGLE).unwrap();
+    let p = dir.path().join("scene.toml");
+    std::fs::write(&p, toml).unwrap();
+    let path = p.to_str().unwrap().to_owned();
+    (dir, path)
+}
+
+#[test]
+fn a_radius_beyond_f32_says_so_with_its_line() {
+    let (_dir, p) = scene_file_info("[[sphere]]\ncenter = [0, 0, 0]\nradius = 1e39\n");
+    accelbench_fails(
+        &["info", "--scene", &p],
+        &["line 3", "1e39 is beyond the range of f32"],
+    );
+}
+
+#[test]
+fn a_scene_file_given_as_a_mesh_is_named_as_one() {
+    let (dir, p) = scene_file_info("[[mesh]]\npath = \"other.toml\"\n");
+    std::fs::write(
+        dir.path().join("other.toml"),
+        "[[mesh]]\npath = \"tri.obj\"\n",
+    )
+    .unwrap();
+    accelbench_fails(
+        &["info", "--scene", &p],
+        &["other.toml", "is a scene file (.toml), not a mesh"],
+    );
+}
+
+/// A folder given as the input file and a missing output folder get different messages.
+#[test]
+fn an_input_folder_and_a_missing_output_folder_are_told_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    let out = accelbench(&["trace", "--scene", "icosphere:n=100", "--rays", d]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("it is a folder, not a file"), "{err}");
+    let rays = dir.path().join("a.rays");
+    let missing = dir.path().join("no/such/folder/a.rays");
+    crate::common::cli::accelbench_ok(&[
+        "rays",
+        "--scene",
+        "icosphere:n=100",
+        "--set",
+        "incoherent",
+        "--count",
+        "10",
+        "--out",
+        rays.to_str().unwrap(),
+    ]);
+    accelbench_fails(
+        &[
+            "rays",
+            "--scene",
+            "icosphere:n=100",
+            "--set",
+            "incoherent",
+            "--count",
+            "10",
+            "--out",
+            missing.to_str().unwrap(),
+        ],
+        &[
+            "cannot write",
+            "does not exist: create it or give another path",
+        ],
+    );
+    let hits = dir.path().join("gone/a.hits");
+    accelbench_fails(
+        &[
+            "trace",
+            "--scene",
+            "icosphere:n=100",
+            "--rays",
+            rays.to_str().unwrap(),
+            "--hits",
+            hits.to_str().unwrap(),
+        ],
+        &["cannot write", "gone does not exist"],
+    );
+}
+
+/// With `--quiet` the skip of a ray set still reaches the user, on stderr (issue 47, case 7).
+#[test]
+fn run_quiet_still_says_why_a_set_was_skipped() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("huge.obj");
+    std::fs::write(
+        &obj,
+        b"v 1e30 1e30 1e30\nv 2e30 1e30 1e30\nv 1e30 2e30 1e30\nf 1 2 3\n",
+    )
+    .unwrap();
+    let out = accelbench(&[
+        "run",
+        "--quick",
+        "--quiet",
+        "--scenes",
+        obj.to_str().unwrap(),
+        "--indices",
+        "bvh",
+        "--rays",
+        "primary,shadow",
+        "--threads",
+        "1",
+        "--repeats",
+        "1",
+        "--picture-size",
+        "0",
+        "--out",
+        dir.path().join("r").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let skips: Vec<&str> = err
+        .lines()
+        .filter(|l| l.contains("ray set shadow: skipped"))
+        .collect();
+    assert_eq!(skips.len(), 1, "{err}");
+}

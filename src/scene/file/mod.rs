@@ -41,6 +41,21 @@ fn at_offsets<'a, T>(
         .map(move |e| (e.span().start, object(e.get_ref())))
 }
 
+/// The OBJ mesh a `[[mesh]]` table names; a scene file there is refused as one (its TOML is
+/// no mesh: read as OBJ it would be "0 triangles").
+fn mesh_file(path: &Path) -> Result<obj::ObjMesh, SceneError> {
+    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
+    if ext.as_deref() == Some("toml") {
+        return Err(SceneError::Invalid(
+            path.display().to_string(),
+            "this is a scene file (.toml), not a mesh: a [[mesh]] path names an .obj file; \
+             copy that scene's tables into this file instead"
+                .into(),
+        ));
+    }
+    obj::load_obj(path)
+}
+
 /// Loads a `.toml` scene file. Every error names the file and, for an object, its line.
 pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
@@ -89,7 +104,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
             Object::Mesh(m) => {
                 let what = format!("[[mesh]] path = \"{}\"", m.path);
                 let t = m.transform().map_err(|e| at(&what, &e))?;
-                let mesh = obj::load_obj(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
+                let mesh = mesh_file(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
                 let material =
                     material(m.material_ref(), &file.materials).map_err(|e| at(&what, &e))?;
                 scene

@@ -101,11 +101,24 @@ placed_entry! {
     }
 }
 
+/// An `f32` field read from the file's number, refused (with the file's line, by toml) when
+/// that number is finite but beyond `f32`'s range, which would otherwise read as infinite.
+pub(super) fn f32_in_range<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    let v = f64::deserialize(d)?;
+    if v.is_finite() && v.abs() > f64::from(f32::MAX) {
+        return Err(serde::de::Error::custom(format!(
+            "{v:e} is beyond the range of f32 (about -3.4e38 to 3.4e38); scale the scene down"
+        )));
+    }
+    Ok(v as f32)
+}
+
 /// `[[sphere]]`: one sphere.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SphereEntry {
     pub center: [f32; 3],
+    #[serde(deserialize_with = "f32_in_range")]
     pub radius: f32,
     pub material: Option<MaterialRef>,
 }

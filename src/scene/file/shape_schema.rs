@@ -69,6 +69,7 @@ placed_entry! {
     CylinderEntry {
         base: [f32; 3],
         top: [f32; 3],
+        #[serde(deserialize_with = "super::schema::f32_in_range")]
         radius: f32,
     }
 }
@@ -77,6 +78,7 @@ placed_entry! {
     ConeEntry {
         base: [f32; 3],
         apex: [f32; 3],
+        #[serde(deserialize_with = "super::schema::f32_in_range")]
         radius: f32,
     }
 }

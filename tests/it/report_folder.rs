@@ -1,0 +1,194 @@
+//! A report folder holds exactly one run (issue 47, case 5): a run writes into a staging folder
+//! and moves it into place whole, a lock refuses a second run on the same folder, and
+//! `meta.json`, `summary.md` and `index.html` say whether the run is `complete` or was
+//! `interrupted`.
+
+use crate::common::cli::{accelbench, accelbench_fails, accelbench_ok};
+use std::io::BufRead;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+/// A quick one-index run into `out`.
+fn quick_run(out: &Path) -> Vec<String> {
+    [
+        "run",
+        "--quick",
+        "--quiet",
+        "--indices",
+        "bvh",
+        "--rays",
+        "primary",
+        "--threads",
+        "1",
+        "--repeats",
+        "1",
+        "--picture-size",
+        "0",
+        "--scenes",
+        "icosphere:n=100",
+        "--out",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain([out.to_str().unwrap().to_owned()])
+    .collect()
+}
+
+fn args(v: &[String]) -> Vec<&str> {
+    v.iter().map(String::as_str).collect()
+}
+
+fn status_of(out: &Path) -> String {
+    let meta = std::fs::read_to_string(out.join("meta.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&meta).unwrap();
+    v["status"].as_str().unwrap_or("(none)").to_owned()
+}
+
+/// The names in `dir`, sorted.
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn a_rerun_replaces_the_older_report_whole_and_says_complete() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    accelbench_ok(&args(&quick_run(&out)));
+    assert_eq!(status_of(&out), "complete");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("data-status=\"complete\""), "{html}");
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("**Status: complete"), "{md}");
+    // An older run's chart and picture, which this run does not write.
+    std::fs::write(out.join("mrays_shadow.svg"), "<svg/>").unwrap();
+    std::fs::create_dir_all(out.join("pictures")).unwrap();
+    std::fs::write(out.join("pictures/old.png"), "").unwrap();
+    accelbench_ok(&args(&quick_run(&out)));
+    assert!(
+        !out.join("mrays_shadow.svg").exists(),
+        "a stale chart stayed"
+    );
+    assert!(!out.join("pictures").exists(), "stale pictures stayed");
+    assert_eq!(status_of(&out), "complete");
+    // No lock, staging or old folder is left beside it.
+    assert_eq!(names_in(tmp.path()), ["r"]);
+}
+
+#[test]
+fn a_second_run_on_a_held_folder_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    let lock = tmp.path().join(".r.accelbench-lock");
+    // Held by a live process: this test's.
+    std::fs::write(&lock, format!("{}\n", std::process::id())).unwrap();
+    accelbench_fails(
+        &args(&quick_run(&out)),
+        &["is writing this report folder", ".r.accelbench-lock"],
+    );
+    assert!(!out.exists(), "the refused run wrote a report");
+    assert!(
+        lock.exists(),
+        "the refused run removed the other run's lock"
+    );
+    // Left by a process that is gone (a pid above any pid_max): taken over.
+    std::fs::write(&lock, "2147483646\n").unwrap();
+    accelbench_ok(&args(&quick_run(&out)));
+    assert_eq!(status_of(&out), "complete");
+    assert!(!lock.exists(), "the lock outlived its run");
+}
+
+#[test]
+fn a_folder_of_other_files_is_never_replaced() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("mine");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("thesis.tex"), "precious").unwrap();
+    accelbench_fails(&args(&quick_run(&out)), &["no accelbench report"]);
+    assert_eq!(names_in(&out), ["thesis.tex"]);
+}
+
+/// SIGINT after the first of three scenes: the run stops before the third, writes what it
+/// measured with the status `interrupted`, and exits 130.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args([
+            "run",
+            "--quick",
+            "--indices",
+            "bvh",
+            "--rays",
+            "primary,incoherent",
+            "--threads",
+            "1",
+            "--repeats",
+            "1",
+            "--picture-size",
+            "0",
+            "--scenes",
+            "icosphere:n=100,soup:n=300000,terrain:n=200",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut seen = String::new();
+    loop {
+        let mut line = String::new();
+        let n = stderr.read_line(&mut line).unwrap();
+        assert!(
+            n > 0,
+            "the run ended before its first scene was done:\n{seen}"
+        );
+        seen.push_str(&line);
+        if line.contains("scene 1/3 done") {
+            break;
+        }
+    }
+    // SAFETY: signals a child process this test started and has not reaped.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{seen}{rest}");
+    assert!(rest.contains("interrupted"), "{rest}");
+    assert_eq!(status_of(&out), "interrupted");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert!(
+        csv.contains("icosphere"),
+        "the first scene's rows are lost:\n{csv}"
+    );
+    assert!(
+        !csv.contains("terrain"),
+        "the run went on after the SIGINT:\n{csv}"
+    );
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("data-status=\"interrupted\""));
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("**Status: interrupted"), "{md}");
+    // A merge refuses an unfinished run.
+    let merged = tmp.path().join("m");
+    let out = accelbench(&[
+        "merge",
+        out.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("unfinished run"),
+        "{err}"
+    );
+}
