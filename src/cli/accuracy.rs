@@ -2,7 +2,7 @@
 //! from the origin; writes `accuracy.csv`, `watertight.csv`, `time_vs_error.svg`,
 //! `shapes_time_vs_error.svg`, `leaks_vs_offset.svg` and `accuracy.md`.
 
-use super::{parse_threads, with_threads};
+use super::threads::{parse_threads, with_threads};
 use crate::accuracy::{self, AccuracyConfig, WatertightConfig};
 use std::path::PathBuf;
 

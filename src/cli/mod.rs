@@ -26,6 +26,7 @@ mod accuracy;
 mod compare;
 mod gen_obj;
 mod info;
+mod kernel_arg;
 mod merge;
 mod rays;
 mod render;
@@ -35,10 +36,10 @@ mod scale;
 mod stress;
 mod suite_args;
 mod sweep;
+mod threads;
 mod trace;
 mod verify;
 
-use crate::geometry::TriangleKernelKind;
 use anyhow::Context;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -146,43 +147,4 @@ fn end_quietly_on_closed_pipe() {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-}
-
-/// Parses a `--threads` value: a positive count. A count above the machine's cores is taken,
-/// with a note on stderr (the threads then share cores, and timings measure that).
-pub(crate) fn parse_threads(s: &str) -> Result<usize, String> {
-    match s.parse::<usize>() {
-        Ok(n) if (1..=4096).contains(&n) => {
-            let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
-            if n > cores {
-                eprintln!(
-                    "note: --threads {n} is more than the {cores} cores here: threads will share \
-                     cores, and timings at {n} threads measure that"
-                );
-            }
-            Ok(n)
-        }
-        _ => Err(format!(
-            "'{s}' is not a thread count: give a whole number from 1 to 4096"
-        )),
-    }
-}
-
-/// Parses a `--kernel` value: a triangle kernel name.
-pub(crate) fn parse_kernel(s: &str) -> Result<TriangleKernelKind, String> {
-    TriangleKernelKind::parse(s).ok_or_else(|| {
-        let names: Vec<_> = TriangleKernelKind::ALL.iter().map(|k| k.name()).collect();
-        format!("unknown kernel '{s}': choose one of {}", names.join(", "))
-    })
-}
-
-/// Runs `f` on a rayon pool of `threads` threads.
-pub(crate) fn with_threads<R: Send>(
-    threads: usize,
-    f: impl FnOnce() -> R + Send,
-) -> anyhow::Result<R> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()?;
-    Ok(pool.install(f))
 }

@@ -1,8 +1,8 @@
 //! `accelbench render`: a Phong-shaded picture of a scene through one index, or with
 //! `--heatmap tests|nodes` the per-pixel cost of its camera rays on a fixed colour scale.
 
-use super::parse_kernel;
-use super::{parse_threads, with_threads};
+use super::kernel_arg::parse_kernel;
+use super::threads::{parse_threads, with_threads};
 use crate::camera::ModelKind;
 use crate::geometry::TriangleKernelKind;
 use crate::index::{IndexSpec, TraceMode, build_index};

@@ -2,8 +2,8 @@
 //! every hit verified, and a report under `reports/<run id>/`, written whole into place at the
 //! end ([`ReportDir`]) with its status: `complete`, `interrupted` (SIGINT) or `failed: ...`.
 
-use super::parse_threads;
 use super::suite_args::SuiteArgs;
+use super::threads::parse_threads;
 use crate::harness::interrupt;
 use crate::harness::suite::{SuiteResult, check_specs, run_suite_with};
 use crate::harness::workload::RaySet;

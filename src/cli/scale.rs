@@ -1,9 +1,10 @@
 //! `accelbench scale`: every index on one generator at growing sizes (1k to 4M primitives by
 //! default), with build time, memory and rays/s plotted against size on log axes.
 
+use super::kernel_arg::parse_kernel;
 use super::run::progress_bar;
 use super::suite_args::split_list;
-use super::{parse_kernel, parse_threads};
+use super::threads::parse_threads;
 use crate::geometry::TriangleKernelKind;
 use crate::harness::suite::{Shard, SuiteConfig, check_specs, run_suite};
 use crate::harness::workload::{RaySet, SetSizes};

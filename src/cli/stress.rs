@@ -3,7 +3,7 @@
 //! `self_intersection.csv` and `stress.md`, and exits non-zero on any failure of our indices
 //! (of peers too with `--strict-peers`).
 
-use super::{parse_threads, with_threads};
+use super::threads::{parse_threads, with_threads};
 use crate::index::peer_names;
 use crate::stress::{self, StressConfig};
 use std::path::PathBuf;

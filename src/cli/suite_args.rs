@@ -37,7 +37,7 @@ pub struct SuiteArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 25)))]
     pub scene_size: Option<u64>,
     /// Triangle kernel every index uses.
-    #[arg(long, default_value = "exact", value_parser = super::parse_kernel)]
+    #[arg(long, default_value = "exact", value_parser = super::kernel_arg::parse_kernel)]
     pub kernel: TriangleKernelKind,
     /// No progress bars.
     #[arg(long)]

@@ -3,7 +3,7 @@
 //! is a subcommand sharing [`CommonSweepArgs`]; its plan (points, charts, default) is the
 //! harness's ([`crate::harness::sweep`]).
 
-use super::{parse_threads, with_threads};
+use super::threads::{parse_threads, with_threads};
 use crate::geometry::{Ray, TriangleKernelKind};
 use crate::harness::sweep::{
     SweepPlan, SweepRow, SweepSetup, bvh_plan, grid_plan, grid2_plan, octree_plan, run_sweep,

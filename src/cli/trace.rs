@@ -1,7 +1,8 @@
 //! `accelbench trace`: trace a `.rays` file with one index, write the `.hits` file, and report
 //! build time, rays/s and tests per ray.
 
-use super::{parse_kernel, parse_threads, with_threads};
+use super::kernel_arg::parse_kernel;
+use super::threads::{parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
 use crate::index::{Counters, IndexSpec, TraceMode, build_index};
 use crate::rays::{read_rays_limit, write_hits};

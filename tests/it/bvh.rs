@@ -9,9 +9,7 @@ use crate::common;
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
 use accelbench::harness::verify::compare_closest;
 use accelbench::index::bvh::{BvhParams, MAX_DEPTH, Preset};
-use accelbench::index::{
-    BuildError, Counters, IndexInfo, IndexSpec, TraceIndex, TraceMode, build_index,
-};
+use accelbench::index::{Counters, IndexInfo, IndexSpec, TraceIndex, TraceMode, build_index};
 use accelbench::rays::incoherent_rays;
 use accelbench::scene::{Scene, generators};
 use common::{agreement_rays, agreement_scenes};
@@ -234,8 +232,7 @@ fn depth_is_capped_on_exponentially_spaced_primitives() {
 
 #[test]
 fn bad_parameters_and_empty_scenes_are_errors() {
-    let scene = generators::generate("icosphere", 100, 1).unwrap();
-    for (spec, needle) in [
+    common::assert_params_rejected(&[
         ("bvh:bins=0", "bins"),
         ("bvh:bins=1000", "bins"),
         ("bvh:leaf_size=0", "leaf_size"),
@@ -245,23 +242,8 @@ fn bad_parameters_and_empty_scenes_are_errors() {
         ("bvh:leafsize=4", "unknown field"),
         ("bvh:spatial_splits=2", "spatial_splits"),
         ("bvh8:spatial_splits=\"yes\"", "spatial_splits"),
-    ] {
-        let s: IndexSpec = spec.parse().unwrap();
-        let err = build_index(&s, &scene.geometry(), TriangleKernelKind::Watertight)
-            .err()
-            .unwrap_or_else(|| panic!("{spec} should fail"));
-        assert!(matches!(err, BuildError::Params { .. }), "{spec}: {err}");
-        assert!(err.to_string().contains(needle), "{spec}: {err}");
-    }
-    let empty = Scene::from_triangles("empty", vec![]);
-    let err = build_index(
-        &IndexSpec::named("bvh"),
-        &empty.geometry(),
-        TriangleKernelKind::Watertight,
-    )
-    .err()
-    .unwrap();
-    assert!(matches!(err, BuildError::EmptyScene));
+    ]);
+    common::assert_refuses_empty_scenes("bvh");
 }
 
 #[test]
@@ -437,18 +419,8 @@ fn spatial_splits_happen_on_slivers_and_the_build_is_deterministic() {
 #[test]
 fn cli_sweep_bvh_writes_csv_and_charts() {
     let dir = tempfile::tempdir().unwrap();
-    let args = [
-        "bvh",
-        "--scene",
-        "slivers:n=300",
-        "--size",
-        "24",
-        "--repeats",
-        "1",
-    ];
     let points = ["--trees", "bvh,bvh8", "--split-budget", "1,4"];
-    let csv = common::cli::sweep_ok(&[&args[..], &points].concat(), &dir.path().join("sweep"));
-    assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
+    let csv = common::cli::small_sweep("bvh", "slivers:n=300", &points, 4, &dir.path().join("s"));
     assert!(
         csv.lines()
             .any(|l| l.contains("bvh8") && l.contains("split_budget=4")),

@@ -6,7 +6,7 @@ use accelbench::harness::suite::ResultRow;
 use std::path::Path;
 
 use crate::common;
-use common::cli::accelbench;
+use common::cli::{Suite, accelbench, accelbench_fails};
 
 fn read_rows(dir: &Path) -> Vec<ResultRow> {
     csv::Reader::from_path(dir.join("results.csv"))
@@ -29,24 +29,9 @@ fn write_rows(dir: &Path, rows: &[ResultRow]) {
 fn a_row_twice_as_slow_fails_the_gate_and_is_named() {
     let dir = tempfile::tempdir().unwrap();
     let a = dir.path().join("a");
-    let o = accelbench(&[
-        "run",
-        "--quick",
-        "--quiet",
-        "--scenes",
-        "icosphere:n=400",
-        "--indices",
-        "bvh,grid",
-        "--rays",
-        "primary,incoherent",
-        "--threads",
-        "1",
-        "--picture-size",
-        "0",
-        "--out",
-        a.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Suite::run("icosphere:n=400", "bvh,grid", "primary,incoherent", &a)
+        .without("--repeats")
+        .ok();
     let (a_s, gate) = (a.to_str().unwrap(), ["--fail-above", "20"]);
 
     let same = accelbench(&["compare", a_s, a_s, gate[0], gate[1]]);
@@ -93,7 +78,6 @@ fn a_row_twice_as_slow_fails_the_gate_and_is_named() {
             .success()
     );
     // A folder without results.csv is a clear error.
-    let o = accelbench(&["compare", a_s, dir.path().to_str().unwrap()]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("results.csv"), "{err}");
+    let not_a_report = dir.path().to_str().unwrap();
+    accelbench_fails(&["compare", a_s, not_a_report], &["results.csv"]);
 }

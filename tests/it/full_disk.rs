@@ -1,7 +1,7 @@
 //! A full disk (stdout on `/dev/full`): every command that prints ends with one message and a
 //! non-zero exit, never a panic and never a silent success (issue 47, case 6).
 
-use crate::common::cli::{accelbench, accelbench_ok};
+use crate::common::cli::{Suite, accelbench, write_rays};
 use std::process::{Command, Stdio};
 
 /// Runs the binary with `args` and stdout on `/dev/full`; asserts the failure it must report.
@@ -29,40 +29,19 @@ fn fails_on_full_disk(args: &[&str]) {
 #[test]
 fn every_printing_command_fails_cleanly_on_a_full_disk() {
     let dir = tempfile::tempdir().unwrap();
-    let p = |name: &str| dir.path().join(name).to_str().unwrap().to_owned();
-    let (rays, report) = (p("r.rays"), p("report"));
+    let (rays, report) = (dir.path().join("r.rays"), dir.path().join("report"));
     let scene = "icosphere:n=200";
-    accelbench_ok(&[
-        "rays", "--scene", scene, "--set", "primary", "--size", "8", "--out", &rays,
-    ]);
+    write_rays(&rays, scene, "primary", &["--size", "8"]);
     fails_on_full_disk(&["--help"]);
     fails_on_full_disk(&["info", "--scene", scene]);
-    fails_on_full_disk(&["trace", "--scene", scene, "--rays", &rays]);
-    let suite = [
-        "--quick",
-        "--quiet",
-        "--scenes",
-        scene,
-        "--indices",
-        "bvh",
-        "--rays",
-        "primary",
-    ];
-    fails_on_full_disk(&[&["verify"], &suite[..]].concat());
-    let run = [
-        "--repeats",
-        "1",
-        "--threads",
-        "1",
-        "--picture-size",
-        "0",
-        "--out",
-        &report,
-    ];
-    fails_on_full_disk(&[&["run"], &suite[..], &run[..]].concat());
+    let r = rays.to_str().unwrap();
+    fails_on_full_disk(&["trace", "--scene", scene, "--rays", r]);
+    fails_on_full_disk(&Suite::verify(scene, "bvh", "primary").args());
+    fails_on_full_disk(&Suite::run(scene, "bvh", "primary", &report).args());
     // The report was written before the verdict failed to print.
-    assert!(std::path::Path::new(&report).join("results.csv").exists());
-    fails_on_full_disk(&["compare", &report, &report]);
+    assert!(report.join("results.csv").exists());
+    let report = report.to_str().unwrap();
+    fails_on_full_disk(&["compare", report, report]);
     // Usage errors still go to stderr with clap's exit code.
     assert_eq!(accelbench(&["--no-such-flag"]).status.code(), Some(2));
 }

@@ -17,14 +17,9 @@ use proptest::sample::Index;
 use std::path::{Path, PathBuf};
 
 fn config() -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(64);
     ProptestConfig {
-        cases,
         failure_persistence: None,
-        ..ProptestConfig::default()
+        ..crate::common::proptest_config(64)
     }
 }
 

@@ -4,10 +4,8 @@
 
 use crate::common;
 
-use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::index::{
-    Counters, Grid, GridParams, Index, IndexSpec, build_index, build_index_on,
-};
+use accelbench::geometry::{Ray, Triangle};
+use accelbench::index::{Counters, Grid, GridParams, Index, IndexSpec, build_index_on};
 use accelbench::scene::{Geometry, Scene, Triangles, generators};
 use common::cli::accelbench;
 use common::{agreement_rays, assert_agrees};
@@ -78,22 +76,7 @@ fn flat_and_one_primitive_scenes() {
     }
     assert_agrees("grid", &flat, &in_plane);
 
-    let one = Scene::from_triangles("one", vec![Triangle::new(Vec3A::ZERO, Vec3A::X, Vec3A::Y)]);
-    let hit = Ray::infinite(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
-    let miss = Ray::infinite(Vec3::new(0.8, 0.8, 1.0), Vec3::NEG_Z).unwrap();
-    let mut rays = agreement_rays(&one, 200);
-    rays.extend([hit, miss]);
-    assert_agrees("grid", &one, &rays);
-    let built = build_index(
-        &"grid".parse().unwrap(),
-        &one.geometry(),
-        TriangleKernelKind::Watertight,
-    )
-    .unwrap();
-    assert!(built.closest_hit(&hit).is_some() && built.closest_hit(&miss).is_none());
-    // One sphere, and one degenerate (point) triangle.
-    let sphere = generators::generate("spheres", 1, 1).unwrap();
-    assert_agrees("grid", &sphere, &agreement_rays(&sphere, 200));
+    common::assert_one_primitive_agrees("grid");
     let point = Scene::from_triangles(
         "point",
         vec![Triangle::new(Vec3A::ONE, Vec3A::ONE, Vec3A::ONE)],
@@ -198,17 +181,18 @@ fn prim_tests_equal_distinct_primitives_of_visited_cells() {
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    let build = common::assert_params_rejected(&[
-        "grid:res=[0,4,4]",
-        "grid:res=[100000,100000,100000]",
-        "grid:res=[4,4]",
-        "grid:lambda=0",
-        "grid:lambda=-3",
-        "grid:lambda=nan",
-        "grid:lambda=inf",
-        "grid:lambda=2,res=[4,4,4]",
-        "grid:cells=4",
+    common::assert_params_rejected(&[
+        ("grid:res=[0,4,4]", "res"),
+        ("grid:res=[100000,100000,100000]", "res"),
+        ("grid:res=[4,4]", "res"),
+        ("grid:lambda=0", "lambda"),
+        ("grid:lambda=-3", "lambda"),
+        ("grid:lambda=nan", "lambda"),
+        ("grid:lambda=inf", "lambda"),
+        ("grid:lambda=2,res=[4,4,4]", "lambda"),
+        ("grid:cells=4", "unknown field"),
     ]);
+    let build = common::soup_builder();
     assert!(build("grid:res=[4,4,4]").is_ok());
     assert!(build("grid:lambda=0.01").is_ok());
 }
@@ -277,18 +261,7 @@ fn cli_sweep_writes_csv_and_charts_and_trace_takes_grid() {
 
     // `trace --index grid:...` on a protocol ray file.
     let rays = dir.path().join("p.rays");
-    let r = accelbench(&[
-        "rays",
-        "--scene",
-        "icosphere",
-        "--set",
-        "primary",
-        "--size",
-        "16",
-        "--out",
-        rays.to_str().unwrap(),
-    ]);
-    assert!(r.status.success());
+    common::cli::write_rays(&rays, "icosphere", "primary", &["--size", "16"]);
     let t = accelbench(&[
         "trace",
         "--scene",

@@ -5,11 +5,11 @@
 
 use crate::common;
 
-use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
-use accelbench::index::{BuildError, Grid2, IndexSpec, build_index, build_index_on, parse_params};
-use accelbench::scene::{Scene, Triangles, generators};
+use accelbench::geometry::{Ray, TriangleKernelKind};
+use accelbench::index::{Grid2, IndexSpec, build_index_on, parse_params};
+use accelbench::scene::{Triangles, generators};
 use common::{agreement_rays, assert_agrees};
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 
 type Tris = Triangles<accelbench::geometry::triangle::Watertight>;
 
@@ -77,20 +77,7 @@ fn flat_and_one_primitive_scenes() {
     // Rays in the plane of the flat scene (y = 0), along x and z.
     rays.extend([Vec3::X, Vec3::Z].map(|d| Ray::infinite(c - d * 10.0, d).unwrap()));
     assert_agrees("grid2", &flat, &rays);
-    let one = Scene::from_triangles("one", vec![Triangle::new(Vec3A::ZERO, Vec3A::X, Vec3A::Y)]);
-    let hit = Ray::infinite(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
-    let mut rays = agreement_rays(&one, 200);
-    rays.push(hit);
-    assert_agrees("grid2", &one, &rays);
-    let built = build_index(
-        &"grid2".parse().unwrap(),
-        &one.geometry(),
-        TriangleKernelKind::Watertight,
-    )
-    .unwrap();
-    assert!(built.closest_hit(&hit).is_some());
-    let sphere = generators::generate("spheres", 1, 1).unwrap();
-    assert_agrees("grid2", &sphere, &agreement_rays(&sphere, 200));
+    common::assert_one_primitive_agrees("grid2");
 }
 
 /// Issue 17: a closed sphere of radius 1000 about 1.2e7 from the origin; every ray from inside
@@ -110,12 +97,11 @@ fn far_from_the_origin_rays_from_inside_all_hit() {
 #[test]
 fn each_primitive_is_tested_at_most_once_per_ray() {
     let scene = generators::generate("slivers", 400, 2).unwrap();
-    let index = build_index(
-        &"grid2:top_lambda=0.1,lambda=8".parse().unwrap(),
-        &scene.geometry(),
+    let index = common::build(
+        "grid2:top_lambda=0.1,lambda=8",
+        &scene,
         TriangleKernelKind::Watertight,
-    )
-    .unwrap();
+    );
     let refs = index.info().prim_refs;
     assert!(refs > 10 * scene.len(), "only {refs} references");
     let rays = agreement_rays(&scene, 400);
@@ -129,23 +115,15 @@ fn each_primitive_is_tested_at_most_once_per_ray() {
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    let build = common::assert_params_rejected(&[
-        "grid2:lambda=0",
-        "grid2:top_lambda=-1",
-        "grid2:lambda=nan",
-        "grid2:top_lambda=inf",
-        "grid2:res=[4,4,4]",
+    common::assert_params_rejected(&[
+        ("grid2:lambda=0", "lambda"),
+        ("grid2:top_lambda=-1", "top_lambda"),
+        ("grid2:lambda=nan", "lambda"),
+        ("grid2:top_lambda=inf", "top_lambda"),
+        ("grid2:res=[4,4,4]", "res"),
     ]);
-    let empty = Scene::from_triangles("empty", vec![]);
-    assert!(matches!(
-        build_index(
-            &"grid2".parse().unwrap(),
-            &empty.geometry(),
-            TriangleKernelKind::Watertight
-        )
-        .err(),
-        Some(BuildError::EmptyScene)
-    ));
+    let build = common::soup_builder();
+    common::assert_refuses_empty_scenes("grid2");
     assert!(build("grid2:top_lambda=0.001,lambda=20").is_ok());
 }
 
@@ -154,18 +132,8 @@ fn bad_parameters_are_typed_errors() {
 #[test]
 fn cli_sweep_grid2_writes_csv_and_charts() {
     let dir = tempfile::tempdir().unwrap();
-    let args = [
-        "grid2",
-        "--scene",
-        "soup:n=1000",
-        "--size",
-        "24",
-        "--repeats",
-        "1",
-    ];
     let points = ["--top-lambda", "0.05,0.5", "--lambda", "1,4"];
-    let csv = common::cli::sweep_ok(&[&args[..], &points].concat(), &dir.path().join("sweep"));
-    assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
+    let csv = common::cli::small_sweep("grid2", "soup:n=1000", &points, 4, &dir.path().join("s"));
     assert!(
         csv.lines()
             .any(|l| l.contains("top_lambda=0.5") && l.contains("lambda=4")),

@@ -1,7 +1,7 @@
 //! Bad OBJ input gets a message that names the line and what to fix, and what the loader
 //! ignores anyway (names, comments) is not a reason to refuse a file (issue 47, case 9).
 
-use crate::common::cli::{accelbench, accelbench_fails};
+use crate::common::cli::{Suite, accelbench, accelbench_fails};
 
 const TRIANGLE: &[u8] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
@@ -65,17 +65,7 @@ fn secondary_sets_skipped_on_a_huge_triangle_say_why() {
     info_of(
         b"v 1e30 1e30 1e30\nv 2e30 1e30 1e30\nv 1e30 2e30 1e30\nf 1 2 3\n",
         |p, _| {
-            let out = crate::common::cli::accelbench_ok(&[
-                "verify",
-                "--quick",
-                "--quiet",
-                "--scenes",
-                p,
-                "--indices",
-                "bvh",
-                "--rays",
-                "primary,shadow",
-            ]);
+            let out = Suite::verify(p, "bvh", "primary,shadow").ok();
             assert!(
                 out.contains("ray set shadow: skipped: none of the"),
                 "{out}"
@@ -129,29 +119,17 @@ fn an_input_folder_and_a_missing_output_folder_are_told_apart() {
     assert!(err.contains("it is a folder, not a file"), "{err}");
     let rays = dir.path().join("a.rays");
     let missing = dir.path().join("no/such/folder/a.rays");
-    crate::common::cli::accelbench_ok(&[
-        "rays",
-        "--scene",
-        "icosphere:n=100",
-        "--set",
-        "incoherent",
-        "--count",
-        "10",
-        "--out",
-        rays.to_str().unwrap(),
-    ]);
+    fn incoherent(out: &std::path::Path) -> Vec<&str> {
+        let head = ["rays", "--scene", "icosphere:n=100", "--set", "incoherent"];
+        [
+            &head[..],
+            &["--count", "10", "--out", out.to_str().unwrap()],
+        ]
+        .concat()
+    }
+    crate::common::cli::accelbench_ok(&incoherent(&rays));
     accelbench_fails(
-        &[
-            "rays",
-            "--scene",
-            "icosphere:n=100",
-            "--set",
-            "incoherent",
-            "--count",
-            "10",
-            "--out",
-            missing.to_str().unwrap(),
-        ],
+        &incoherent(&missing),
         &[
             "cannot write",
             "does not exist: create it or give another path",
@@ -182,25 +160,13 @@ fn run_quiet_still_says_why_a_set_was_skipped() {
         b"v 1e30 1e30 1e30\nv 2e30 1e30 1e30\nv 1e30 2e30 1e30\nf 1 2 3\n",
     )
     .unwrap();
-    let out = accelbench(&[
-        "run",
-        "--quick",
-        "--quiet",
-        "--scenes",
+    let out = Suite::run(
         obj.to_str().unwrap(),
-        "--indices",
         "bvh",
-        "--rays",
         "primary,shadow",
-        "--threads",
-        "1",
-        "--repeats",
-        "1",
-        "--picture-size",
-        "0",
-        "--out",
-        dir.path().join("r").to_str().unwrap(),
-    ]);
+        &dir.path().join("r"),
+    )
+    .output();
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
     let skips: Vec<&str> = err

@@ -185,12 +185,7 @@ fn each_primitive_is_tested_at_most_once_per_ray() {
         "octree:max_prims=1,max_depth=6",
         "octree-topdown:max_prims=1,max_depth=6",
     ] {
-        let index = build_index(
-            &spec.parse().unwrap(),
-            &scene.geometry(),
-            TriangleKernelKind::Watertight,
-        )
-        .unwrap();
+        let index = common::build(spec, &scene, TriangleKernelKind::Watertight);
         // The big triangles sit in many leaves (the tiny ones in about one each), so without the
         // mailbox rays would retest them.
         let refs = index.info().prim_refs;
@@ -246,12 +241,7 @@ fn degenerate_scenes_build_small_trees_and_agree() {
             "octree:max_prims=1,max_depth=16",
             "octree-topdown:max_prims=1",
         ] {
-            let index = build_index(
-                &spec.parse().unwrap(),
-                &scene.geometry(),
-                TriangleKernelKind::Watertight,
-            )
-            .unwrap();
+            let index = common::build(spec, scene, TriangleKernelKind::Watertight);
             // No runaway subdivision on coincident primitives.
             assert!(
                 index.info().nodes < 20_000,
@@ -274,32 +264,16 @@ fn degenerate_scenes_build_small_trees_and_agree() {
     }
 }
 
-fn build_err(spec: &str, scene: &Scene) -> BuildError {
-    spec.parse::<IndexSpec>()
-        .and_then(|s| build_index(&s, &scene.geometry(), TriangleKernelKind::Watertight))
-        .err()
-        .unwrap_or_else(|| panic!("{spec} should fail"))
-}
-
 #[test]
 fn bad_parameters_and_scenes_are_typed_errors() {
-    let scene = generators::generate("icosphere", 100, 1).unwrap();
-    for (spec, says) in [
+    common::assert_params_rejected(&[
         ("octree:max_prims=0", "max_prims"),
         ("octree-topdown:max_depth=17", "max_depth"),
         ("octree:max_depth=-1", "max_depth"),
         ("octree:max_prims=\"many\"", "max_prims"),
         ("octree:leaf_size=4", "unknown field"),
-    ] {
-        let e = build_err(spec, &scene);
-        assert!(matches!(e, BuildError::Params { .. }), "{spec}: {e:?}");
-        assert!(e.to_string().contains(says), "{spec}: {e}");
-    }
-    let empty = Scene::from_triangles("empty", vec![]);
-    assert!(matches!(
-        build_err("octree", &empty),
-        BuildError::EmptyScene
-    ));
+    ]);
+    common::assert_refuses_empty_scenes("octree");
     // NaN coordinates are rejected where scenes enter (`Scene::validate`); infinite ones that
     // reach the index give non-finite bounds.
     let inf = Scene::from_triangles(
@@ -310,7 +284,7 @@ fn bad_parameters_and_scenes_are_typed_errors() {
             Vec3A::Y,
         )],
     );
-    let e = build_err("octree-topdown", &inf);
+    let e = common::build_error("octree-topdown", &inf);
     assert!(matches!(e, BuildError::Failed { .. }), "{e:?}");
     assert!(e.to_string().contains("not finite"), "{e}");
 }
@@ -360,47 +334,25 @@ fn ray_intervals_ending_and_starting_at_the_hit_agree() {
 #[test]
 fn cli_sweep_octree_writes_csv_and_charts() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("sweep");
-    let run = |args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_accelbench"))
-            .args(args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .unwrap()
-    };
-    let o = run(&[
-        "sweep",
+    let mut points = vec!["--max-prims", "2,8", "--max-depth", "5,9"];
+    points.extend(["--traversal", "octree-topdown"]);
+    let csv = common::cli::small_sweep(
         "octree",
-        "--scene",
         "icosphere:n=800",
-        "--size",
-        "24",
-        "--repeats",
-        "1",
-        "--max-prims",
-        "2,8",
-        "--max-depth",
-        "5,9",
-        "--traversal",
-        "octree-topdown",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
-    assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
+        &points,
+        4,
+        &dir.path().join("s"),
+    );
     assert!(csv.contains("octree-topdown:max_depth=9,max_prims=2"));
-    for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
-        assert!(out.join(f).exists(), "{f}");
-    }
-    let bad = run(&[
-        "sweep",
-        "octree",
-        "--scene",
-        "icosphere",
-        "--max-depth",
-        "99",
-    ]);
-    assert!(!bad.status.success());
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("99"));
+    common::cli::accelbench_fails(
+        &[
+            "sweep",
+            "octree",
+            "--scene",
+            "icosphere",
+            "--max-depth",
+            "99",
+        ],
+        &["99"],
+    );
 }

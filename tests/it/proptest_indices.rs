@@ -17,14 +17,7 @@ use proptest::prelude::*;
 use std::sync::Arc;
 
 fn config() -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(32);
-    ProptestConfig {
-        cases,
-        ..ProptestConfig::default()
-    }
+    crate::common::proptest_config(32)
 }
 
 /// Coordinates: a few shared grid values (so vertices, planes and cell boundaries coincide)

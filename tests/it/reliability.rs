@@ -89,40 +89,38 @@ fn assert_others_ran(res: &SuiteResult, failed: &str) {
     assert_eq!(res.mismatch_total, 0);
 }
 
-#[test]
-fn a_panicking_build_is_a_failure_note_and_the_run_goes_on() {
-    let res = run_with_faulty("faulty", &|_| panic!("injected build fault"));
-    let reason = failure_note(&res, "faulty");
-    assert!(
-        reason.ends_with("injected build fault (building)"),
-        "{reason}"
-    );
+/// Runs the suite with index `faulty` made by `make` and asserts that its one failure is noted
+/// with a reason ending in `reason` while the other indices ran.
+fn assert_contained(make: &Make, reason: &str) {
+    let res = run_with_faulty("faulty", make);
+    let note = failure_note(&res, "faulty");
+    assert!(note.ends_with(reason), "{note}");
     assert_others_ran(&res, "faulty");
     assert_eq!(res.failure_total, 1);
+}
+
+#[test]
+fn a_panicking_build_is_a_failure_note_and_the_run_goes_on() {
+    assert_contained(
+        &|_| panic!("injected build fault"),
+        "injected build fault (building)",
+    );
 }
 
 #[test]
 fn a_panicking_trace_is_a_failure_note_and_the_run_goes_on() {
-    let res = run_with_faulty("faulty", &panicking_tracer::<false>);
-    let reason = failure_note(&res, "faulty");
-    assert!(
-        reason.ends_with("injected trace fault (counting pass)"),
-        "{reason}"
+    assert_contained(
+        &panicking_tracer::<false>,
+        "injected trace fault (counting pass)",
     );
-    assert_others_ran(&res, "faulty");
-    assert_eq!(res.failure_total, 1);
 }
 
 #[test]
 fn a_panicking_timed_pass_is_a_failure_note_and_the_run_goes_on() {
-    let res = run_with_faulty("faulty", &panicking_tracer::<true>);
-    let reason = failure_note(&res, "faulty");
-    assert!(
-        reason.ends_with("injected trace fault (timed pass)"),
-        "{reason}"
+    assert_contained(
+        &panicking_tracer::<true>,
+        "injected trace fault (timed pass)",
     );
-    assert_others_ran(&res, "faulty");
-    assert_eq!(res.failure_total, 1);
 }
 
 /// A peer's failure is noted but, like its mismatches, does not count against the run.

@@ -3,39 +3,14 @@
 //! `meta.json`, `summary.md` and `index.html` say whether the run is `complete` or was
 //! `interrupted`.
 
-use crate::common::cli::{accelbench, accelbench_fails, accelbench_ok};
+use crate::common::cli::{Suite, accelbench_fails};
 use std::io::BufRead;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// A quick one-index run into `out`.
-fn quick_run(out: &Path) -> Vec<String> {
-    [
-        "run",
-        "--quick",
-        "--quiet",
-        "--indices",
-        "bvh",
-        "--rays",
-        "primary",
-        "--threads",
-        "1",
-        "--repeats",
-        "1",
-        "--picture-size",
-        "0",
-        "--scenes",
-        "icosphere:n=100",
-        "--out",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .chain([out.to_str().unwrap().to_owned()])
-    .collect()
-}
-
-fn args(v: &[String]) -> Vec<&str> {
-    v.iter().map(String::as_str).collect()
+fn quick_run(out: &Path) -> Suite {
+    Suite::run("icosphere:n=100", "bvh", "primary", out)
 }
 
 fn status_of(out: &Path) -> String {
@@ -58,7 +33,7 @@ fn names_in(dir: &Path) -> Vec<String> {
 fn a_rerun_replaces_the_older_report_whole_and_says_complete() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("r");
-    accelbench_ok(&args(&quick_run(&out)));
+    quick_run(&out).ok();
     assert_eq!(status_of(&out), "complete");
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("data-status=\"complete\""), "{html}");
@@ -68,7 +43,7 @@ fn a_rerun_replaces_the_older_report_whole_and_says_complete() {
     std::fs::write(out.join("mrays_shadow.svg"), "<svg/>").unwrap();
     std::fs::create_dir_all(out.join("pictures")).unwrap();
     std::fs::write(out.join("pictures/old.png"), "").unwrap();
-    accelbench_ok(&args(&quick_run(&out)));
+    quick_run(&out).ok();
     assert!(
         !out.join("mrays_shadow.svg").exists(),
         "a stale chart stayed"
@@ -86,10 +61,7 @@ fn a_second_run_on_a_held_folder_is_refused() {
     let lock = tmp.path().join(".r.accelbench-lock");
     // Held by a live process: this test's.
     std::fs::write(&lock, format!("{}\n", std::process::id())).unwrap();
-    accelbench_fails(
-        &args(&quick_run(&out)),
-        &["is writing this report folder", ".r.accelbench-lock"],
-    );
+    quick_run(&out).fails(&["is writing this report folder", ".r.accelbench-lock"]);
     assert!(!out.exists(), "the refused run wrote a report");
     assert!(
         lock.exists(),
@@ -97,7 +69,7 @@ fn a_second_run_on_a_held_folder_is_refused() {
     );
     // Left by a process that is gone (a pid above any pid_max): taken over.
     std::fs::write(&lock, "2147483646\n").unwrap();
-    accelbench_ok(&args(&quick_run(&out)));
+    quick_run(&out).ok();
     assert_eq!(status_of(&out), "complete");
     assert!(!lock.exists(), "the lock outlived its run");
 }
@@ -108,7 +80,7 @@ fn a_folder_of_other_files_is_never_replaced() {
     let out = tmp.path().join("mine");
     std::fs::create_dir(&out).unwrap();
     std::fs::write(out.join("thesis.tex"), "precious").unwrap();
-    accelbench_fails(&args(&quick_run(&out)), &["no accelbench report"]);
+    quick_run(&out).fails(&["no accelbench report"]);
     assert_eq!(names_in(&out), ["thesis.tex"]);
 }
 
@@ -120,24 +92,16 @@ fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("r");
     let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args([
-            "run",
-            "--quick",
-            "--indices",
-            "bvh",
-            "--rays",
-            "primary,incoherent",
-            "--threads",
-            "1",
-            "--repeats",
-            "1",
-            "--picture-size",
-            "0",
-            "--scenes",
-            "icosphere:n=100,soup:n=300000,terrain:n=200",
-            "--out",
-            out.to_str().unwrap(),
-        ])
+        .args(
+            Suite::run(
+                "icosphere:n=100,soup:n=300000,terrain:n=200",
+                "bvh",
+                "primary,incoherent",
+                &out,
+            )
+            .without("--quiet")
+            .args(),
+        )
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -180,15 +144,6 @@ fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
     assert!(md.contains("**Status: interrupted"), "{md}");
     // A merge refuses an unfinished run.
     let merged = tmp.path().join("m");
-    let out = accelbench(&[
-        "merge",
-        out.to_str().unwrap(),
-        "--out",
-        merged.to_str().unwrap(),
-    ]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !out.status.success() && err.contains("unfinished run"),
-        "{err}"
-    );
+    let (out, merged) = (out.to_str().unwrap(), merged.to_str().unwrap());
+    accelbench_fails(&["merge", out, "--out", merged], &["unfinished run"]);
 }

@@ -2,43 +2,19 @@
 //! the command and the commit of its run and holds its verdict and tables; a folder that is not
 //! a report is refused with the missing file named.
 
-use crate::common::cli::accelbench;
+use crate::common::cli::{Suite, accelbench, accelbench_fails, accelbench_ok};
 
 #[test]
 fn a_report_folder_becomes_a_dated_results_page() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("run");
-    let o = accelbench(&[
-        "run",
-        "--quick",
-        "--quiet",
-        "--scenes",
-        "icosphere:n=300",
-        "--indices",
-        "bvh,grid",
-        "--rays",
-        "primary",
-        "--threads",
-        "1",
-        "--repeats",
-        "1",
-        "--picture-size",
-        "16",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Suite::run("icosphere:n=300", "bvh,grid", "primary", &out)
+        .with("--picture-size", "16")
+        .ok();
     let page_file = dir.path().join("page.md");
-    let o = accelbench(&[
-        "report",
-        out.to_str().unwrap(),
-        "--markdown",
-        "--title",
-        "a small sphere",
-        "--out",
-        page_file.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (o, p) = (out.to_str().unwrap(), page_file.to_str().unwrap());
+    let title = "a small sphere";
+    accelbench_ok(&["report", o, "--markdown", "--title", title, "--out", p]);
     let page = std::fs::read_to_string(&page_file).unwrap();
     let meta: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
@@ -60,7 +36,6 @@ fn a_report_folder_becomes_a_dated_results_page() {
 
     let o = accelbench(&["report", out.to_str().unwrap()]);
     assert!(!o.status.success(), "a page without a format was written");
-    let o = accelbench(&["report", dir.path().to_str().unwrap(), "--markdown"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("results.csv"), "{err}");
+    let not_a_report = dir.path().to_str().unwrap();
+    accelbench_fails(&["report", not_a_report, "--markdown"], &["results.csv"]);
 }

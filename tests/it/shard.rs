@@ -6,31 +6,14 @@ use accelbench::harness::suite::ResultRow;
 use std::path::Path;
 
 use crate::common;
-use common::cli::accelbench;
+use common::cli::{Suite, accelbench};
 
 fn run(out: &Path, shard: &str) {
-    let o = accelbench(&[
-        "run",
-        "--quick",
-        "--quiet",
-        "--scenes",
-        "icosphere:n=300,soup:n=300,seed=2",
-        "--indices",
-        "bvh,grid,octree",
-        "--rays",
-        "primary,shadow",
-        "--threads",
-        "1",
-        "--repeats",
-        "1",
-        "--picture-size",
-        "16",
-        "--shard",
-        shard,
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scenes = "icosphere:n=300,soup:n=300,seed=2";
+    Suite::run(scenes, "bvh,grid,octree", "primary,shadow", out)
+        .with("--picture-size", "16")
+        .with("--shard", shard)
+        .ok();
 }
 
 /// A row without its timings (build and trace times and the rates derived from them).

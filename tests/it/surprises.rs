@@ -2,17 +2,23 @@
 //! case 8): a command's output over its own input, OBJ statements that are not OBJ, a CI gate
 //! that compared nothing, duplicate parameters and indices, more threads than cores.
 
-use crate::common::cli::{accelbench, accelbench_fails, accelbench_ok};
+use crate::common::cli::{Suite, accelbench, accelbench_fails, accelbench_ok, write_rays};
+
+/// The scene the ray-file cases trace.
+const SCENE: &str = "icosphere:n=200";
+
+/// A temporary folder (removed when dropped) and in it 8 x 8 primary rays of [`SCENE`].
+fn primary_rays() -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let rays = dir.path().join("r.rays");
+    write_rays(&rays, SCENE, "primary", &["--size", "8"]);
+    (dir, rays)
+}
 
 #[test]
 fn trace_refuses_to_write_its_hits_over_its_rays() {
-    let dir = tempfile::tempdir().unwrap();
-    let rays = dir.path().join("r.rays");
-    let r = rays.to_str().unwrap();
-    let scene = "icosphere:n=200";
-    accelbench_ok(&[
-        "rays", "--scene", scene, "--set", "primary", "--size", "8", "--out", r,
-    ]);
+    let (_dir, rays) = primary_rays();
+    let (r, scene) = (rays.to_str().unwrap(), SCENE);
     let before = std::fs::read(&rays).unwrap();
     let args = ["trace", "--scene", scene, "--rays", r, "--hits", r];
     accelbench_fails(&args, &["--hits", "would overwrite the input"]);
@@ -41,27 +47,8 @@ fn a_comparison_gate_that_compared_nothing_fails() {
     let dir = tempfile::tempdir().unwrap();
     let report = |scene: &str| {
         let out = dir.path().join(scene.replace([':', '='], "_"));
-        let o = out.to_str().unwrap();
-        accelbench_ok(&[
-            "run",
-            "--quick",
-            "--quiet",
-            "--scenes",
-            scene,
-            "--indices",
-            "bvh",
-            "--rays",
-            "primary",
-            "--repeats",
-            "1",
-            "--threads",
-            "1",
-            "--picture-size",
-            "0",
-            "--out",
-            o,
-        ]);
-        o.to_owned()
+        Suite::run(scene, "bvh", "primary", &out).ok();
+        out.to_str().unwrap().to_owned()
     };
     let (a, b) = (report("icosphere:n=200"), report("soup:n=200"));
     accelbench_ok(&["compare", &a, &b]);
@@ -77,38 +64,16 @@ fn a_parameter_or_an_index_given_twice_is_refused() {
         &["info", "--scene", "soup:n=10,n=20"],
         &["'n' is given twice"],
     );
-    accelbench_fails(
-        &[
-            "verify",
-            "--quick",
-            "--scenes",
-            "soup:n=100",
-            "--indices",
-            "bvh,bvh",
-        ],
-        &["--indices lists 'bvh' twice"],
-    );
-    accelbench_fails(
-        &[
-            "verify",
-            "--scenes",
-            "soup:n=100",
-            "--indices",
-            "bvh:leaf_size=2,leaf_size=4",
-        ],
-        &["leaf_size"],
-    );
+    Suite::verify("soup:n=100", "bvh,bvh", "primary").fails(&["--indices lists 'bvh' twice"]);
+    Suite::verify("soup:n=100", "bvh:leaf_size=2,leaf_size=4", "primary")
+        .without("--quick")
+        .fails(&["leaf_size"]);
 }
 
 #[test]
 fn more_threads_than_cores_get_a_note() {
-    let dir = tempfile::tempdir().unwrap();
-    let rays = dir.path().join("r.rays");
-    let r = rays.to_str().unwrap();
-    let scene = "icosphere:n=200";
-    accelbench_ok(&[
-        "rays", "--scene", scene, "--set", "primary", "--size", "8", "--out", r,
-    ]);
+    let (_dir, rays) = primary_rays();
+    let (r, scene) = (rays.to_str().unwrap(), SCENE);
     let cores = std::thread::available_parallelism().unwrap().get();
     let many = (cores + 1).to_string();
     let out = accelbench(&["trace", "--scene", scene, "--rays", r, "--threads", &many]);

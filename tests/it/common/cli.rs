@@ -1,6 +1,6 @@
 //! Running the `accelbench` binary from tests, and the shared meshes they read.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Runs the binary with `args` from the crate's root, so `scenes/` and `../shared` resolve.
@@ -37,17 +37,27 @@ pub fn accelbench_fails(args: &[&str], expected: &[&str]) {
     assert!(!err.contains("panicked"), "{args:?} panicked:\n{err}");
 }
 
-/// Runs `accelbench sweep` with `args` and `--out out`, asserts a zero exit and that both
-/// charts of the primary rays were written, and returns `primary.csv`.
-pub fn sweep_ok(args: &[&str], out: &std::path::Path) -> String {
-    let mut all = vec!["sweep"];
-    all.extend_from_slice(args);
-    all.extend(["--out", out.to_str().unwrap()]);
-    accelbench_ok(&all);
+/// Runs `accelbench sweep INDEX --scene SCENE --size 24 --repeats 1` over the sweep options
+/// `points` into `out`, asserts a zero exit, one CSV row per point (`rows` of them) and both
+/// charts of the primary rays, and returns `primary.csv`.
+pub fn small_sweep(index: &str, scene: &str, points: &[&str], rows: usize, out: &Path) -> String {
+    let head = [
+        "sweep",
+        index,
+        "--scene",
+        scene,
+        "--size",
+        "24",
+        "--repeats",
+        "1",
+    ];
+    accelbench_ok(&[&head[..], points, &["--out", out.to_str().unwrap()]].concat());
     for f in ["primary-rays_per_s.svg", "primary-build_ms.svg"] {
         assert!(out.join(f).exists(), "{f}");
     }
-    std::fs::read_to_string(out.join("primary.csv")).unwrap()
+    let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + rows, "{csv}");
+    csv
 }
 
 /// `../shared/meshes/<name>` when present; otherwise `None`, with a line saying the test part
@@ -60,4 +70,99 @@ pub fn shared_mesh(name: &str) -> Option<PathBuf> {
         eprintln!("skipped: {} not found", p.display());
     }
     p.exists().then_some(p)
+}
+
+/// A small `run` or `verify` for tests, as its arguments: `--quick --quiet` on the given scenes,
+/// indices and ray sets, and for `run` one thread, one repeat, no pictures and `--out`. Options
+/// are set or replaced with [`Suite::with`] and dropped with [`Suite::without`], so each test
+/// states only what it changes.
+#[derive(Clone, Debug)]
+pub struct Suite {
+    command: &'static str,
+    /// Flags in order, each with its value (`None` for a switch such as `--quiet`).
+    flags: Vec<(String, Option<String>)>,
+}
+
+impl Suite {
+    /// `verify --quick --quiet --scenes S --indices I --rays R`.
+    pub fn verify(scenes: &str, indices: &str, rays: &str) -> Suite {
+        Suite {
+            command: "verify",
+            flags: Vec::new(),
+        }
+        .switch("--quick")
+        .switch("--quiet")
+        .with("--scenes", scenes)
+        .with("--indices", indices)
+        .with("--rays", rays)
+    }
+
+    /// `run`, as [`Suite::verify`] plus `--threads 1 --repeats 1 --picture-size 0 --out OUT`.
+    pub fn run(scenes: &str, indices: &str, rays: &str, out: &Path) -> Suite {
+        Suite {
+            command: "run",
+            ..Suite::verify(scenes, indices, rays)
+        }
+        .with("--threads", "1")
+        .with("--repeats", "1")
+        .with("--picture-size", "0")
+        .with("--out", out.to_str().unwrap())
+    }
+
+    /// Sets option `flag` to `value`, in place of the value it had.
+    pub fn with(mut self, flag: &str, value: &str) -> Suite {
+        let value = Some(value.to_owned());
+        match self.flags.iter_mut().find(|(f, _)| f == flag) {
+            Some(entry) => entry.1 = value,
+            None => self.flags.push((flag.to_owned(), value)),
+        }
+        self
+    }
+
+    /// Adds the switch `flag` (an option without a value).
+    pub fn switch(mut self, flag: &str) -> Suite {
+        if !self.flags.iter().any(|(f, _)| f == flag) {
+            self.flags.push((flag.to_owned(), None));
+        }
+        self
+    }
+
+    /// Drops `flag` and its value.
+    pub fn without(mut self, flag: &str) -> Suite {
+        self.flags.retain(|(f, _)| f != flag);
+        self
+    }
+
+    /// The command line after the program's name.
+    pub fn args(&self) -> Vec<&str> {
+        let mut args = vec![self.command];
+        for (flag, value) in &self.flags {
+            args.push(flag);
+            args.extend(value.as_deref());
+        }
+        args
+    }
+
+    /// Runs it (see [`accelbench`]).
+    pub fn output(&self) -> Output {
+        accelbench(&self.args())
+    }
+
+    /// Runs it and expects success (see [`accelbench_ok`]); returns stdout.
+    pub fn ok(&self) -> String {
+        accelbench_ok(&self.args())
+    }
+
+    /// Runs it and expects a clean failure naming every `expected` piece (see
+    /// [`accelbench_fails`]).
+    pub fn fails(&self, expected: &[&str]) {
+        accelbench_fails(&self.args(), expected)
+    }
+}
+
+/// Writes the ray set `set` of `scene` to `out` with `accelbench rays`, its size or count given
+/// by `amount` (for example `["--size", "8"]`), and asserts that it worked.
+pub fn write_rays(out: &Path, scene: &str, set: &str, amount: &[&str]) {
+    let head = ["rays", "--scene", scene, "--set", set, "--out"];
+    accelbench_ok(&[&head[..], &[out.to_str().unwrap()], amount].concat());
 }

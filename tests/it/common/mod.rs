@@ -226,23 +226,73 @@ pub fn closest_in(
     out
 }
 
-/// Asserts that every spec in `specs` fails to build on a small triangle soup with a typed
-/// parameter error ([`accelbench::index::BuildError::Params`]); returns a builder for further
-/// checks on the same scene.
-pub fn assert_params_rejected(
-    specs: &[&str],
-) -> impl Fn(&str) -> Result<(), accelbench::index::BuildError> {
-    let geom = generators::generate("soup", 100, 1).unwrap().geometry();
-    let build = move |s: &str| {
-        accelbench::index::build_index(&s.parse()?, &geom, TriangleKernelKind::Watertight)
-            .map(|_| ())
-    };
-    for bad in specs {
+/// Asserts that every spec of `cases` fails to build on a small triangle soup with a typed
+/// parameter error ([`accelbench::index::BuildError::Params`]) whose message contains the
+/// case's word.
+pub fn assert_params_rejected(cases: &[(&str, &str)]) {
+    let build = soup_builder();
+    for (bad, says) in cases {
         let err = build(bad).unwrap_err();
         assert!(
             matches!(err, accelbench::index::BuildError::Params { .. }),
             "{bad}: {err}"
         );
+        assert!(err.to_string().contains(says), "{bad}: {err}");
     }
-    build
+}
+
+/// Builds a spec (parsed from text) over a triangle soup of 100 with the watertight kernel.
+pub fn soup_builder() -> impl Fn(&str) -> Result<(), accelbench::index::BuildError> {
+    let geom = generators::generate("soup", 100, 1).unwrap().geometry();
+    move |s: &str| build_index(&s.parse()?, &geom, TriangleKernelKind::Watertight).map(|_| ())
+}
+
+/// Asserts that `spec` refuses a scene without primitives with [`BuildError::EmptyScene`].
+///
+/// [`BuildError::EmptyScene`]: accelbench::index::BuildError::EmptyScene
+pub fn assert_refuses_empty_scenes(spec: &str) {
+    let empty = Scene::from_triangles("empty", vec![]);
+    let err = build_error(spec, &empty);
+    assert!(
+        matches!(err, accelbench::index::BuildError::EmptyScene),
+        "{spec}: {err}"
+    );
+}
+
+/// The error that building `spec` over `scene` must give (with the watertight kernel).
+pub fn build_error(spec: &str, scene: &Scene) -> accelbench::index::BuildError {
+    spec.parse::<IndexSpec>()
+        .and_then(|s| build_index(&s, &scene.geometry(), TriangleKernelKind::Watertight))
+        .err()
+        .unwrap_or_else(|| panic!("{spec} should fail"))
+}
+
+/// Proptest's configuration with `cases` cases per property, unless the environment's
+/// `PROPTEST_CASES` gives another number (CI runs the fuzz targets with more).
+pub fn proptest_config(cases: u32) -> proptest::prelude::ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(cases);
+    proptest::prelude::ProptestConfig {
+        cases,
+        ..Default::default()
+    }
+}
+
+/// Asserts that `spec` agrees with brute force on a scene of one triangle (and hits it and
+/// misses beside it where a ray aims) and on a scene of one sphere.
+pub fn assert_one_primitive_agrees(spec: &str) {
+    use accelbench::geometry::Triangle;
+    use glam::Vec3A;
+    let one = Scene::from_triangles("one", vec![Triangle::new(Vec3A::ZERO, Vec3A::X, Vec3A::Y)]);
+    let hit = Ray::infinite(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
+    let miss = Ray::infinite(Vec3::new(0.8, 0.8, 1.0), Vec3::NEG_Z).unwrap();
+    let mut rays = agreement_rays(&one, 200);
+    rays.extend([hit, miss]);
+    assert_agrees(spec, &one, &rays);
+    let built = build(spec, &one, TriangleKernelKind::Watertight);
+    assert!(built.closest_hit(&hit).is_some() && built.closest_hit(&miss).is_none());
+    let sphere = generators::generate("spheres", 1, 1).unwrap();
+    assert_agrees(spec, &sphere, &agreement_rays(&sphere, 200));
 }

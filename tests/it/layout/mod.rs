@@ -1,8 +1,7 @@
 //! The source tree's shape, checked: no two files or folders of `src/` import each other (no
 //! import loop of any length, at either level), and no top-level folder imports one that
 //! `ARCHITECTURE.md`'s layer table does not let it import. A failure names the loop or the
-//! import. One known loop is still to be untangled ([`KNOWN_BACK_EDGES`]); the check fails
-//! on any other, and when it is gone (so the list only shrinks).
+//! import.
 
 mod cycles;
 mod layers;
@@ -10,27 +9,6 @@ mod scan;
 
 use cycles::{Graph, cycles};
 use std::path::PathBuf;
-
-/// Imports known to close a loop, as (importing files' prefix, imported file): left out before
-/// the loops are looked for.
-/// - `cli/mod.rs` dispatches to each subcommand's file and holds the argument helpers they use
-///   (`parse_threads`, `with_threads`, `parse_kernel`); the helpers belong in a file of their
-///   own.
-const KNOWN_BACK_EDGES: &[(&str, &str)] = &[("cli/", "cli/mod.rs")];
-
-/// The crate's file graph without the known back edges.
-fn files_without_known_loops() -> Graph {
-    without(&scan::file_graph(&root().join("src")), KNOWN_BACK_EDGES)
-}
-
-/// `graph` without the edges from files starting with `prefix` to `target`, for each pair.
-fn without(graph: &Graph, edges: &[(&str, &str)]) -> Graph {
-    let mut g = graph.clone();
-    for (from, targets) in g.iter_mut() {
-        targets.retain(|t| !edges.iter().any(|(p, e)| from.starts_with(p) && t == e));
-    }
-    g
-}
 
 /// The crate root (where `Cargo.toml` is).
 fn root() -> PathBuf {
@@ -47,7 +25,7 @@ fn loops(graph: &Graph) -> String {
 
 #[test]
 fn no_two_files_import_each_other() {
-    let files = files_without_known_loops();
+    let files = scan::file_graph(&root().join("src"));
     assert!(files.len() > 100, "found only {} files", files.len());
     let found = loops(&files);
     assert!(found.is_empty(), "import loops between files:\n{found}");
@@ -55,26 +33,9 @@ fn no_two_files_import_each_other() {
 
 #[test]
 fn no_two_folders_import_each_other() {
-    let folders = scan::folder_graph(&files_without_known_loops());
+    let folders = scan::folder_graph(&scan::file_graph(&root().join("src")));
     let found = loops(&folders);
     assert!(found.is_empty(), "import loops between folders:\n{found}");
-}
-
-/// Each known back edge still closes a loop: once one is untangled, it leaves the list.
-#[test]
-fn every_known_loop_is_still_there() {
-    let files = scan::file_graph(&root().join("src"));
-    for known in KNOWN_BACK_EDGES {
-        let others: Vec<_> = KNOWN_BACK_EDGES
-            .iter()
-            .copied()
-            .filter(|k| k != known)
-            .collect();
-        assert!(
-            !cycles(&without(&files, &others)).is_empty(),
-            "{known:?} closes no loop any more: remove it from KNOWN_BACK_EDGES"
-        );
-    }
 }
 
 #[test]
