@@ -5,7 +5,7 @@ use anyhow::Context;
 
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
+    /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
 }

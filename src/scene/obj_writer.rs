@@ -6,8 +6,8 @@
 //! spheres instead of tessellating them (a tessellated sphere would hit differently).
 
 use super::SceneError;
+use super::triangle_mesh::weld;
 use crate::geometry::Triangle;
-use std::collections::HashMap;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -27,23 +27,13 @@ fn write_to(w: &mut impl Write, triangles: &[Triangle], comment: &str) -> std::i
     for line in comment.lines() {
         writeln!(w, "# {line}")?;
     }
-    let mut ids: HashMap<[u32; 3], usize> = HashMap::new();
-    let mut faces = Vec::with_capacity(triangles.len());
-    for t in triangles {
-        let mut face = [0usize; 3];
-        for (f, v) in face.iter_mut().zip(t.v) {
-            let next = ids.len() + 1; // OBJ indices are 1-based
-            *f = *ids
-                .entry(v.to_array().map(f32::to_bits))
-                .or_insert_with(|| next);
-            if *f == next {
-                writeln!(w, "v {} {} {}", v.x, v.y, v.z)?;
-            }
-        }
-        faces.push(face);
+    let (vertices, faces) = weld(triangles);
+    for v in vertices {
+        writeln!(w, "v {} {} {}", v.x, v.y, v.z)?;
     }
+    // OBJ indices are 1-based.
     for [a, b, c] in faces {
-        writeln!(w, "f {a} {b} {c}")?;
+        writeln!(w, "f {} {} {}", a + 1, b + 1, c + 1)?;
     }
     Ok(())
 }
