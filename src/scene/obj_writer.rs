@@ -13,14 +13,20 @@ use std::path::Path;
 
 /// Writes `triangles` to `path`, with `comment` lines (`# ...`) at the top.
 pub fn write_obj(path: &Path, triangles: &[Triangle], comment: &str) -> Result<(), SceneError> {
+    write_with(path, |w| write_to(w, triangles, comment))
+}
+
+/// Creates `path` and writes it through a buffer with `write` (the mesh writers' shared part).
+pub fn write_with(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> Result<(), SceneError> {
     let io = |source| SceneError::Io {
         path: path.to_owned(),
         cause: source,
     };
     let mut w = BufWriter::new(std::fs::File::create(path).map_err(io)?);
-    write_to(&mut w, triangles, comment)
-        .and_then(|_| w.flush())
-        .map_err(io)
+    write(&mut w).and_then(|_| w.flush()).map_err(io)
 }
 
 fn write_to(w: &mut impl Write, triangles: &[Triangle], comment: &str) -> std::io::Result<()> {

@@ -4,21 +4,15 @@
 //! spheres or shapes.
 
 use super::SceneError;
+use super::obj_writer::write_with;
 use super::triangle_mesh::weld;
 use crate::geometry::Triangle;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 /// Writes `triangles` to `path`, with `comment` lines in the header.
 pub fn write_ply(path: &Path, triangles: &[Triangle], comment: &str) -> Result<(), SceneError> {
-    let io = |source| SceneError::Io {
-        path: path.to_owned(),
-        cause: source,
-    };
-    let mut w = BufWriter::new(std::fs::File::create(path).map_err(io)?);
-    write_to(&mut w, triangles, comment)
-        .and_then(|_| w.flush())
-        .map_err(io)
+    write_with(path, |w| write_to(w, triangles, comment))
 }
 
 fn write_to(w: &mut impl Write, triangles: &[Triangle], comment: &str) -> std::io::Result<()> {

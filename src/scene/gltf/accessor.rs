@@ -28,6 +28,17 @@ impl Span<'_> {
         &self.buffer.bytes[self.start + k * self.stride..]
     }
 
+    /// Every element through `read` (given the element's bytes onwards), in parallel.
+    fn read_all<T: Send>(&self, read: impl Fn(&[u8]) -> T + Sync) -> Vec<T> {
+        let mut out = Vec::new();
+        (0..self.count)
+            .into_par_iter()
+            .with_min_len(MIN_PARALLEL)
+            .map(|k| read(self.element(k)))
+            .collect_into_vec(&mut out);
+        out
+    }
+
     /// The file offset of element `k`.
     fn at(&self, k: usize) -> Location {
         Location::Byte((self.buffer.base + self.start + k * self.stride) as u64)
@@ -136,16 +147,10 @@ pub fn positions(buffers: &Buffers, main: &Path, a: &Accessor) -> Result<Vec<Vec
         ));
     }
     let s = span(buffers, main, a, 12)?;
-    let mut out = Vec::new();
-    (0..s.count)
-        .into_par_iter()
-        .with_min_len(MIN_PARALLEL)
-        .map(|k| {
-            let e = s.element(k);
-            let f = |i: usize| f32::from_le_bytes(e[4 * i..4 * i + 4].try_into().expect("4 bytes"));
-            Vec3A::new(f(0), f(1), f(2))
-        })
-        .collect_into_vec(&mut out);
+    let out = s.read_all(|e| {
+        let f = |i: usize| f32::from_le_bytes(e[4 * i..4 * i + 4].try_into().expect("4 bytes"));
+        Vec3A::new(f(0), f(1), f(2))
+    });
     if let Some(k) = out.par_iter().position_first(|p| !p.is_finite()) {
         let p = out[k];
         return Err(SceneError::NonFiniteVertex {
@@ -186,19 +191,11 @@ pub fn indices(
         }
     };
     let s = span(buffers, main, a, size)?;
-    let mut out = Vec::new();
-    (0..s.count)
-        .into_par_iter()
-        .with_min_len(MIN_PARALLEL)
-        .map(|k| {
-            let e = s.element(k);
-            match size {
-                1 => e[0] as u32,
-                2 => u16::from_le_bytes([e[0], e[1]]) as u32,
-                _ => u32::from_le_bytes([e[0], e[1], e[2], e[3]]),
-            }
-        })
-        .collect_into_vec(&mut out);
+    let out = s.read_all(|e| match size {
+        1 => e[0] as u32,
+        2 => u16::from_le_bytes([e[0], e[1]]) as u32,
+        _ => u32::from_le_bytes([e[0], e[1], e[2], e[3]]),
+    });
     if let Some(k) = out.par_iter().position_first(|&i| i as usize >= vertices) {
         return Err(SceneError::Mesh {
             path: s.buffer.file.to_owned(),

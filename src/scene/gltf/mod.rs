@@ -21,6 +21,7 @@ use super::mapped::Mapped;
 use super::triangle_mesh::{TriangleMesh, bounds_of, push_triangles};
 use crate::geometry::Aabb;
 use buffers::Buffers;
+use gltf::json::validation::Validate;
 use gltf::mesh::Mode;
 use rayon::prelude::*;
 use std::collections::HashSet;
@@ -57,13 +58,30 @@ pub fn load_gltf(path: &Path) -> Result<TriangleMesh, SceneError> {
         };
         bad(at, format!("{message} (JSON column {})", e.column()))
     })?;
-    let doc = gltf::Document::from_json(root).map_err(|e| match e {
-        gltf::Error::Validation(errs) if !errs.is_empty() => {
-            let (p, why) = &errs[0];
-            bad(Location::Json(p.to_string()), format!("{why} ({} problems in all); fix the document, e.g. with the Khronos glTF validator", errs.len()))
-        }
-        other => bad(Location::Json("the document".into()), other.to_string()),
-    })?;
+    // POSITION's `min` and `max` are required by the specification but not needed here (the
+    // bounds are computed), and often left out by exporters: their absence is not an error.
+    let needed = |p: &gltf::json::Path| {
+        let p = p.to_string();
+        !(p.ends_with("[\"POSITION\"].min") || p.ends_with("[\"POSITION\"].max"))
+    };
+    let doc = gltf::Document::from_json_without_validation(root);
+    let mut errs = Vec::new();
+    doc.as_json()
+        .validate(doc.as_json(), gltf::json::Path::new, &mut |path, why| {
+            let p = path();
+            if needed(&p) {
+                errs.push((p, why));
+            }
+        });
+    if let Some((p, why)) = errs.first() {
+        return Err(bad(
+            Location::Json(p.to_string()),
+            format!(
+                "{why} ({} problems in all); fix the document, e.g. with the Khronos glTF validator",
+                errs.len()
+            ),
+        ));
+    }
     let buffers = Buffers::load(&doc, path, bin)?;
     let instances = nodes::instances(&doc).map_err(|(at, m)| bad(at, m))?;
     let mut triangles = Vec::new();

@@ -2,7 +2,7 @@
 //! Each element's lines are found first (a fast newline scan), then parsed in parallel in
 //! pieces of whole lines; an error's byte offset becomes its line number at the end.
 
-use super::body::{Body, check_fits, push_face, push_strips, vertex_index};
+use super::body::{Body, IndexList, check_fits};
 use super::header::{Element, Fail, Header, Kind, Problem, Role, malformed};
 use crate::scene::coordinate::{self, Bad};
 use crate::scene::error::Location;
@@ -106,27 +106,19 @@ fn pieces(bytes: &[u8], pos: usize, end: usize) -> Vec<(usize, usize)> {
 /// The records of element `e` in the whole lines `[a, b)`.
 fn piece(bytes: &[u8], a: usize, b: usize, e: &Element, vertices: u64) -> Result<Body, Fail> {
     let mut out = Body::default();
-    let (mut items, mut poly, mut run) = (Vec::new(), Vec::new(), Vec::new());
+    let mut list = IndexList::default();
     let mut start = a;
     for line in bytes[a..b].split_inclusive(|&c| c == b'\n') {
         let at = Location::Byte(start as u64);
         start += line.len();
         let mut xyz = [0.0f32; 3];
-        record(line, e, &mut xyz, &mut items).map_err(|p| (at.clone(), p))?;
+        record(line, e, &mut xyz, &mut list.items).map_err(|p| (at.clone(), p))?;
         let done = match e.role {
             Role::Vertex(_) => {
                 out.positions.push(Vec3A::from(xyz));
                 Ok(())
             }
-            Role::Faces(_) => {
-                poly.clear();
-                items
-                    .iter()
-                    .try_for_each(|&v| vertex_index(v, vertices).map(|i| poly.push(i)))
-                    .and_then(|()| push_face(&mut out.corners, &poly))
-            }
-            Role::Strips(_) => push_strips(&mut out.corners, &items, vertices, &mut run),
-            Role::Skipped => Ok(()),
+            role => list.push(role, vertices, &mut out.corners),
         };
         done.map_err(|p| (at, p))?;
     }

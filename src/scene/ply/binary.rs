@@ -2,7 +2,7 @@
 //! Elements of fixed-size records (vertices of scalars; faces that are all triangles) are
 //! parsed in parallel; anything else record by record. Every error names its byte offset.
 
-use super::body::{Body, check_fits, coordinates, push_face, push_strips, vertex_index};
+use super::body::{Body, IndexList, check_fits, coordinates, vertex_index};
 use super::header::{Element, Encoding, Fail, Header, Kind, Problem, Role, Scalar, malformed};
 use crate::scene::error::Location;
 use glam::Vec3A;
@@ -209,7 +209,7 @@ fn walk(
         _ => None,
     };
     let mut scalars = vec![0.0f64; e.properties.len()];
-    let (mut items, mut poly, mut run) = (Vec::new(), Vec::new(), Vec::new());
+    let mut list = IndexList::default();
     for r in 0..e.count {
         let start = pos;
         let mut take = |n: u64| -> Result<&[u8], Fail> {
@@ -243,8 +243,9 @@ fn walk(
                     }
                     let b = take(n as u64 * item.size() as u64)?;
                     if wanted == Some(j) {
-                        items.clear();
-                        items.extend(b.chunks_exact(item.size()).map(|x| item.read(x, big)));
+                        list.items.clear();
+                        list.items
+                            .extend(b.chunks_exact(item.size()).map(|x| item.read(x, big)));
                     }
                 }
             }
@@ -254,15 +255,7 @@ fn walk(
             Role::Vertex(xyz) => {
                 coordinates(xyz.map(|j| scalars[j]), r).map(|p| body.positions.push(p))
             }
-            Role::Faces(_) => {
-                poly.clear();
-                items
-                    .iter()
-                    .try_for_each(|&v| vertex_index(v, vertices).map(|i| poly.push(i)))
-                    .and_then(|()| push_face(&mut body.corners, &poly))
-            }
-            Role::Strips(_) => push_strips(&mut body.corners, &items, vertices, &mut run),
-            Role::Skipped => Ok(()),
+            role => list.push(role, vertices, &mut body.corners),
         };
         done.map_err(|p| (at(), in_record(e, r, p)))?;
     }

@@ -2,7 +2,7 @@
 //! triangle corners from faces (fan-triangulated) and strips, and the size a header's counts
 //! claim against the bytes there are.
 
-use super::header::{Element, Fail, Problem, malformed};
+use super::header::{Element, Fail, Problem, Role, malformed};
 use crate::scene::corners::{push_polygon, push_strip};
 use crate::scene::error::Location;
 use glam::Vec3A;
@@ -43,36 +43,50 @@ pub fn vertex_index(v: f64, vertices: u64) -> Result<u32, Problem> {
     }
 }
 
-/// Appends face `poly` (at least 3 vertex indices) fan-triangulated.
-pub fn push_face(corners: &mut Vec<[u32; 3]>, poly: &[u32]) -> Result<(), Problem> {
-    if poly.len() < 3 {
-        return Err(Problem::Malformed(format!(
-            "a face needs at least 3 vertices, this one has {}; complete or remove it",
-            poly.len()
-        )));
-    }
-    push_polygon(corners, poly);
-    Ok(())
+/// One reader's index list of the current face or strip record (`items`, as read), and the
+/// indices checked.
+#[derive(Debug, Default)]
+pub struct IndexList {
+    pub items: Vec<f64>,
+    poly: Vec<u32>,
 }
 
-/// Appends one `tristrips` record: runs of vertex indices separated by -1.
-pub fn push_strips(
-    corners: &mut Vec<[u32; 3]>,
-    items: &[f64],
-    vertices: u64,
-    run: &mut Vec<u32>,
-) -> Result<(), Problem> {
-    run.clear();
-    for &v in items {
-        if v == -1.0 {
-            push_strip(corners, run);
-            run.clear();
-        } else {
-            run.push(vertex_index(v, vertices)?);
+impl IndexList {
+    /// Appends the triangles of the record just read, of an element with `role`: a face
+    /// (at least 3 vertices) fan-triangulated, or strips (runs separated by -1); each index
+    /// checked against the `vertices` the header declares.
+    pub fn push(
+        &mut self,
+        role: Role,
+        vertices: u64,
+        corners: &mut Vec<[u32; 3]>,
+    ) -> Result<(), Problem> {
+        let strips = match role {
+            Role::Faces(_) => false,
+            Role::Strips(_) => true,
+            _ => return Ok(()),
+        };
+        self.poly.clear();
+        for &v in &self.items {
+            if strips && v == -1.0 {
+                push_strip(corners, &self.poly);
+                self.poly.clear();
+            } else {
+                self.poly.push(vertex_index(v, vertices)?);
+            }
         }
+        if strips {
+            push_strip(corners, &self.poly);
+        } else if self.poly.len() < 3 {
+            return Err(Problem::Malformed(format!(
+                "a face needs at least 3 vertices, this one has {}; complete or remove it",
+                self.poly.len()
+            )));
+        } else {
+            push_polygon(corners, &self.poly);
+        }
+        Ok(())
     }
-    push_strip(corners, run);
-    Ok(())
 }
 
 /// A vertex's coordinates as `f32`: NaN or infinity refused, and a finite `f64` beyond
