@@ -5,15 +5,18 @@ use anyhow::Context;
 
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
+    /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
 }
 
 pub fn run(a: InfoArgs) -> anyhow::Result<()> {
+    let start = std::time::Instant::now();
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
+    let seconds = start.elapsed().as_secs_f64();
     let b = scene.bounds();
     println!("scene:       {}", scene.name);
+    println!("{}", load_line(&a.scene, seconds, scene.triangles.len()));
     println!("primitives:  {}", scene.len());
     println!("triangles:   {}", scene.triangles.len());
     println!("spheres:     {}", scene.spheres.len());
@@ -43,4 +46,20 @@ pub fn run(a: InfoArgs) -> anyhow::Result<()> {
         None => println!("camera:      none (the protocol camera is used)"),
     }
     Ok(())
+}
+
+/// The `load:` line: the seconds `load_scene` took and, for a file, its size and the rates
+/// (1 MB = 10^6 bytes; a `.gltf` counts its JSON only, not the `.bin` files it names).
+fn load_line(arg: &str, seconds: f64, triangles: usize) -> String {
+    let mtris = triangles as f64 / 1e6 / seconds.max(1e-9);
+    match std::fs::metadata(arg) {
+        Ok(m) if m.is_file() => {
+            let mb = m.len() as f64 / 1e6;
+            format!(
+                "load:        {seconds:.3} s ({mb:.1} MB at {:.0} MB/s, {mtris:.1} Mtriangles/s)",
+                mb / seconds.max(1e-9)
+            )
+        }
+        _ => format!("load:        {seconds:.3} s (generated, {mtris:.1} Mtriangles/s)"),
+    }
 }

@@ -69,7 +69,7 @@ enum Command {
     Rays(rays::RaysArgs),
     /// Trace a .rays file with one index and write the .hits file.
     Trace(trace::TraceArgs),
-    /// Write a generator's triangles as an .obj file (by default into meshes/).
+    /// Write a generator's triangles as an .obj or binary .ply file (by default into meshes/).
     Gen(gen_obj::GenArgs),
     /// Render a scene through an index as a PNG: Phong shading with shadows, or a cost heat map.
     Render(render::RenderArgs),

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct RaysArgs {
-    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
+    /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
     /// Which set: the protocol's `primary` and `incoherent` (see ../shared/PROTOCOL.md), or the

@@ -13,7 +13,8 @@ use std::path::Path;
 #[derive(Debug, Clone, clap::Args)]
 pub struct SuiteArgs {
     /// Scenes, comma-separated: built-in names (`soup`, `stadium:n=100000,seed=2`) and paths
-    /// to .obj or .toml files [default: every built-in scene plus every .obj in meshes/].
+    /// to mesh (.obj, .ply, .gltf, .glb) or .toml files [default: every built-in scene plus
+    /// every mesh file in meshes/].
     #[arg(long)]
     pub scenes: Option<String>,
     /// Indices, comma-separated, with optional parameters (`bvh,grid:lambda=4`) [default: all].

@@ -39,7 +39,7 @@ enum SweepTarget {
 /// What every sweep takes: the scene, the rays, where to write, how many threads.
 #[derive(Debug, clap::Args)]
 pub struct CommonSweepArgs {
-    /// An .obj or .toml path, or a built-in scene name (`stadium`, `spheres:n=100000`).
+    /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name (`stadium`, `spheres:n=100000`).
     #[arg(long)]
     scene: String,
     /// Which standard ray set (see ../shared/PROTOCOL.md), at a modest size.

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 #[derive(Debug, clap::Args)]
 pub struct TraceArgs {
-    /// An .obj or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
+    /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
     /// Index name with optional parameters, e.g. `brute` or `bvh:leaf_size=4`.

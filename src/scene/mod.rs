@@ -2,22 +2,29 @@
 
 mod accept;
 mod area_light;
+mod coordinate;
+mod corners;
 mod error;
 pub mod file;
 pub mod generators;
 mod geometry;
+pub mod gltf;
 mod load;
+mod mapped;
 mod material;
 mod meshes_dir;
 pub mod obj;
 mod obj_statements;
 mod obj_text;
 pub mod obj_writer;
+pub mod ply;
+pub mod ply_writer;
 pub mod transform;
 mod transform_shapes;
+pub mod triangle_mesh;
 
 pub use area_light::{AreaLight, MAX_AREA_LIGHT_SAMPLES};
-pub use error::SceneError;
+pub use error::{Location, SceneError};
 pub use geometry::{
     Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
 };
@@ -77,8 +84,9 @@ pub struct Scene {
     pub shapes: Vec<Shape>,
     pub lights: Vec<PointLight>,
     pub camera: Option<CameraSpec>,
-    /// Bounds the protocol's standard ray sets use: for OBJ files, every `v` line (also unused
-    /// vertices); otherwise the primitives' bounds.
+    /// Bounds the protocol's standard ray sets use: for mesh files, every vertex (an OBJ's `v`
+    /// lines, a PLY's vertices, a glTF's transformed positions; also unused ones); otherwise
+    /// the primitives' bounds.
     pub reference_bounds: Option<Aabb>,
     /// Materials per object (empty: every primitive uses [`Material::DEFAULT`]).
     pub materials: MaterialMap,
@@ -176,7 +184,11 @@ impl Scene {
 
     /// Loads a `.obj` file as a triangle scene named after the file.
     pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
-        let mesh = obj::load_obj(path)?;
+        Scene::from_mesh(path, obj::load_obj(path)?)
+    }
+
+    /// The triangle scene of a mesh file loaded from `path` (named after the file), checked.
+    pub fn from_mesh(path: &Path, mesh: triangle_mesh::TriangleMesh) -> Result<Scene, SceneError> {
         let name = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())

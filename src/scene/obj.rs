@@ -3,26 +3,22 @@
 //! and of every `f` line for what tobj rejects or drops without a line number (indices out of
 //! range, faces of fewer than 3 vertices).
 
-use super::SceneError;
+use super::error::Location;
 use super::obj_statements::unknown_statements;
 use super::obj_text::read_obj_text;
+use super::triangle_mesh::TriangleMesh;
+use super::{SceneError, coordinate};
 use crate::geometry::{Aabb, Triangle};
 use glam::Vec3A;
 use std::path::Path;
 
-/// The triangles of an OBJ file in file order (faces fan-triangulated `(v0, vi, vi+1)`, models
-/// concatenated in order) and the bounds of all its `v` lines.
-#[derive(Debug, Clone)]
-pub struct ObjMesh {
-    pub triangles: Vec<Triangle>,
-    pub vertex_bounds: Aabb,
-}
-
-/// Loads an OBJ file (its text prepared by [`read_obj_text`]: comments cut, names in any
+/// Loads an OBJ file: its triangles in file order (faces fan-triangulated `(v0, vi, vi+1)`,
+/// models concatenated in order) and the bounds of all its `v` lines. The text is prepared by
+/// [`read_obj_text`] prepared by [`read_obj_text`]: comments cut, names in any
 /// encoding), warning on stderr once per kind of statement the format does not have
 /// (ignored, as tobj ignores it), with its first line. Errors: missing or unreadable file, malformed content, NaN or infinite
 /// coordinates (with the line), no vertices, or no faces.
-pub fn load_obj(path: &Path) -> Result<ObjMesh, SceneError> {
+pub fn load_obj(path: &Path) -> Result<TriangleMesh, SceneError> {
     let text = &read_obj_text(path)?;
     let vertex_bounds = scan_vertices(path, text)?;
     check_faces(path, text)?;
@@ -68,7 +64,7 @@ pub fn load_obj(path: &Path) -> Result<ObjMesh, SceneError> {
             triangles.len()
         )));
     }
-    Ok(ObjMesh {
+    Ok(TriangleMesh {
         triangles,
         vertex_bounds,
     })
@@ -95,21 +91,17 @@ fn scan_vertices(path: &Path, text: &str) -> Result<Aabb, SceneError> {
         }
         let mut c = [0.0f32; 3];
         for (ci, tok) in c.iter_mut().zip(&numbers) {
-            *ci = tok
-                .parse::<f32>()
-                .map_err(|_| err(format!("bad vertex coordinate '{tok}'")))?;
-            if ci.is_infinite() && tok.parse::<f64>().is_ok_and(f64::is_finite) {
-                return Err(err(format!(
-                    "coordinate {tok} is beyond the range of f32 (about -3.4e38 to 3.4e38); scale the model down"
-                )));
-            }
-            if !ci.is_finite() {
-                return Err(SceneError::NonFiniteVertex {
-                    path: path.to_owned(),
-                    line: n + 1,
-                    text: line.trim().to_owned(),
-                });
-            }
+            *ci = match coordinate::parse(tok) {
+                Ok(x) => x,
+                Err(coordinate::Bad::NonFinite) => {
+                    return Err(SceneError::NonFiniteVertex {
+                        path: path.to_owned(),
+                        at: Location::Line(n + 1),
+                        text: line.trim().to_owned(),
+                    });
+                }
+                Err(bad) => return Err(err(bad.message(tok))),
+            };
         }
         b = b.grown(Vec3A::from(c));
     }
@@ -192,7 +184,7 @@ mod tests {
         ));
         let nan = write("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
         match load_obj(nan.path()) {
-            Err(SceneError::NonFiniteVertex { line, .. }) => assert_eq!(line, 2),
+            Err(SceneError::NonFiniteVertex { at, .. }) => assert_eq!(at, Location::Line(2)),
             other => panic!("expected NonFiniteVertex, got {other:?}"),
         }
         let empty = write("");

@@ -6,44 +6,40 @@
 //! spheres instead of tessellating them (a tessellated sphere would hit differently).
 
 use super::SceneError;
+use super::triangle_mesh::weld;
 use crate::geometry::Triangle;
-use std::collections::HashMap;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Writes `triangles` to `path`, with `comment` lines (`# ...`) at the top.
 pub fn write_obj(path: &Path, triangles: &[Triangle], comment: &str) -> Result<(), SceneError> {
+    write_with(path, |w| write_to(w, triangles, comment))
+}
+
+/// Creates `path` and writes it through a buffer with `write` (the mesh writers' shared part).
+pub fn write_with(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> Result<(), SceneError> {
     let io = |source| SceneError::Io {
         path: path.to_owned(),
         cause: source,
     };
     let mut w = BufWriter::new(std::fs::File::create(path).map_err(io)?);
-    write_to(&mut w, triangles, comment)
-        .and_then(|_| w.flush())
-        .map_err(io)
+    write(&mut w).and_then(|_| w.flush()).map_err(io)
 }
 
 fn write_to(w: &mut impl Write, triangles: &[Triangle], comment: &str) -> std::io::Result<()> {
     for line in comment.lines() {
         writeln!(w, "# {line}")?;
     }
-    let mut ids: HashMap<[u32; 3], usize> = HashMap::new();
-    let mut faces = Vec::with_capacity(triangles.len());
-    for t in triangles {
-        let mut face = [0usize; 3];
-        for (f, v) in face.iter_mut().zip(t.v) {
-            let next = ids.len() + 1; // OBJ indices are 1-based
-            *f = *ids
-                .entry(v.to_array().map(f32::to_bits))
-                .or_insert_with(|| next);
-            if *f == next {
-                writeln!(w, "v {} {} {}", v.x, v.y, v.z)?;
-            }
-        }
-        faces.push(face);
+    let (vertices, faces) = weld(triangles);
+    for v in vertices {
+        writeln!(w, "v {} {} {}", v.x, v.y, v.z)?;
     }
+    // OBJ indices are 1-based.
     for [a, b, c] in faces {
-        writeln!(w, "f {a} {b} {c}")?;
+        writeln!(w, "f {} {} {}", a + 1, b + 1, c + 1)?;
     }
     Ok(())
 }

@@ -1,5 +1,5 @@
-//! Fuzzing every input format with proptest over bytes (issue 47): the OBJ loader, scene TOML
-//! files, `.rays` and `.hits` files, index specs (`bvh:leaf_size=2`) and scene specs
+//! Fuzzing every input format with proptest over bytes (issue 47): the OBJ, PLY and GLB
+//! loaders (issue 49), scene TOML files, `.rays` and `.hits` files, index specs (`bvh:leaf_size=2`) and scene specs
 //! (`soup:n=10,seed=3`). Each gets its corpus from `tests/fuzz-corpus/<target>/` (small valid
 //! `ok-*` and broken `bad-*` inputs), mutated byte by byte (replaced, inserted, removed,
 //! truncated), and arbitrary bytes. The property: no panic, an error or a value.
@@ -191,6 +191,10 @@ fn scene_spec(bytes: &[u8]) -> Result<(), String> {
 fn every_corpus_input_is_as_its_name_says() {
     let obj = Scratch::new("m.obj");
     corpus_as_named("obj", |b| scene_file(&obj, b));
+    let ply = Scratch::new("m.ply");
+    corpus_as_named("ply", |b| scene_file(&ply, b));
+    let glb = Scratch::new("m.glb");
+    corpus_as_named("glb", |b| scene_file(&glb, b));
     let toml = Scratch::new("scene.toml");
     corpus_as_named("toml", |b| scene_file(&toml, b));
     let rays = Scratch::new("r.rays");
@@ -207,6 +211,18 @@ proptest! {
     #[test]
     fn obj_files_never_panic(bytes in inputs("obj")) {
         let s = Scratch::new("m.obj");
+        let _ = scene_file(&s, &bytes);
+    }
+
+    #[test]
+    fn ply_files_never_panic(bytes in inputs("ply")) {
+        let s = Scratch::new("m.ply");
+        let _ = scene_file(&s, &bytes);
+    }
+
+    #[test]
+    fn glb_files_never_panic(bytes in inputs("glb")) {
+        let s = Scratch::new("m.glb");
         let _ = scene_file(&s, &bytes);
     }
 

@@ -22,6 +22,7 @@ mod last_hit;
 mod layout;
 mod leak;
 mod memory_checks;
+mod mesh_formats;
 mod messages;
 mod obvhs_peer;
 mod octree;

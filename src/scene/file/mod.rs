@@ -1,4 +1,4 @@
-//! Scene files in TOML: OBJ meshes and generators placed by transforms, spheres, shapes, a
+//! Scene files in TOML: meshes (OBJ, PLY, glTF) and generators placed by transforms, spheres, shapes, a
 //! camera, point and area lights, and materials per object (format in [`schema`] and
 //! [`shape_schema`]).
 //!
@@ -8,12 +8,13 @@
 //! or `shapes`, sit among the `[[sphere]]` and `[[shape]]` tables at the generator's place), and
 //! each object's primitives keep their own order.
 
+pub mod mesh;
 pub mod placed;
 pub mod schema;
 pub mod shape_schema;
 
 use super::generators::{DEFAULT_SEED, DEFAULT_SIZE, GeneratorSpec};
-use super::{Material, Scene, SceneError, obj};
+use super::{Material, Scene, SceneError};
 use crate::camera::Camera;
 use glam::Vec3A;
 use placed::{MaterialRef, Placed};
@@ -39,21 +40,6 @@ fn at_offsets<'a, T>(
     table
         .iter()
         .map(move |e| (e.span().start, object(e.get_ref())))
-}
-
-/// The OBJ mesh a `[[mesh]]` table names; a scene file there is refused as one (its TOML is
-/// no mesh: read as OBJ it would be "0 triangles").
-fn mesh_file(path: &Path) -> Result<obj::ObjMesh, SceneError> {
-    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
-    if ext.as_deref() == Some("toml") {
-        return Err(SceneError::Invalid(
-            path.display().to_string(),
-            "this is a scene file (.toml), not a mesh: a [[mesh]] path names an .obj file; \
-             copy that scene's tables into this file instead"
-                .into(),
-        ));
-    }
-    obj::load_obj(path)
 }
 
 /// Loads a `.toml` scene file. Every error names the file and, for an object, its line.
@@ -104,7 +90,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
             Object::Mesh(m) => {
                 let what = format!("[[mesh]] path = \"{}\"", m.path);
                 let t = m.transform().map_err(|e| at(&what, &e))?;
-                let mesh = mesh_file(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
+                let mesh = mesh::load_mesh(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
                 let material =
                     material(m.material_ref(), &file.materials).map_err(|e| at(&what, &e))?;
                 scene
