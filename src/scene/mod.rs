@@ -6,6 +6,7 @@ mod error;
 pub mod file;
 pub mod generators;
 mod geometry;
+mod geometry_traits;
 mod load;
 mod material;
 mod meshes_dir;
@@ -18,9 +19,8 @@ mod transform_shapes;
 
 pub use area_light::{AreaLight, MAX_AREA_LIGHT_SAMPLES};
 pub use error::SceneError;
-pub use geometry::{
-    Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
-};
+pub use geometry::{GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry};
+pub use geometry_traits::{Geometry, GeometryWrapper, ShapeQueries};
 pub use load::load_scene;
 pub use material::{Material, MaterialMap};
 pub use meshes_dir::meshes_in;
