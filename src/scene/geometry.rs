@@ -1,9 +1,10 @@
-//! The primitive interface indices are built from and traverse: bounds, centroids, the shared
-//! kernel, and conservative overlap with a box. Monomorphized per primitive mix and triangle
-//! kernel, so a triangle-only scene never pays for a sphere branch and the kernel choice costs no
-//! dispatch.
+//! The scene's geometries ([`Triangles`], [`Mixed`], [`WithShapes`]) implementing the traits
+//! of `geometry_traits.rs`, and [`with_geometry`], which picks one for a scene. Monomorphized
+//! per primitive mix and triangle kernel, so a triangle-only scene never pays for a sphere
+//! branch and the kernel choice costs no dispatch.
 
 use super::accept::{accept, accept_lanes};
+use super::geometry_traits::{Geometry, ShapeQueries};
 use crate::geometry::clip::triangle_clipped_bounds;
 use crate::geometry::overlap::{sphere_overlaps_box, triangle_overlaps_box};
 use crate::geometry::sphere::intersect_algebraic;
@@ -14,93 +15,14 @@ use glam::Vec3A;
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-/// A set of primitives with ids `0..len()` in scene order (triangles first, then spheres, then
-/// shapes).
-///
-/// Contract of [`Geometry::intersect`]: the returned `t` is the shared kernel's `t` clamped into
-/// the slab interval of the primitive's own bounds ([`Aabb::ray_interval`]), and a kernel hit
-/// whose bounds the conservative slab test rejects is a miss. So `t` never lies before the entry
-/// of any box that contains the primitive's bounds, which makes "skip a box whose entry is
-/// greater than the best `t`" exact. The `t` does not depend on the `t_max` passed in (only its
-/// acceptance does): indices that shrink `t_max` get the bits brute force gets. A hit's `t` is
-/// finite: a clamped `t` of `+inf` (a distance that overflows `f32`) is a miss, as `+inf` is the
-/// protocol's miss distance (`scene/accept.rs`).
-pub trait Geometry: Clone + Send + Sync + 'static {
-    /// Number of primitives.
-    fn len(&self) -> usize;
-    /// `true` when there are no primitives.
-    fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-    /// Bounds of primitive `prim`.
-    fn bounds(&self, prim: u32) -> Aabb;
-    /// A representative point (centre of the bounds), for builders.
-    fn centroid(&self, prim: u32) -> Vec3A {
-        self.bounds(prim).center()
-    }
-    /// The shared kernel: `Some(t)` for a hit with a finite `t` in `[ray.t_min, t_max]`.
-    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32>;
-    /// Conservative overlap of the primitive with a closed box (never a false "no").
-    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool;
-    /// Bounds of the part of the primitive inside `cell` (for kd-tree "perfect splits"):
-    /// conservative (contains the exact part, rounding included), empty when they do not meet.
-    /// By default the overlap of the two boxes; triangles are clipped to the box.
-    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
-        self.bounds(prim).intersection(*cell)
-    }
-    /// Unit geometric normal at the hit (final hit only).
-    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A;
-    /// The interval `[min, max]` of `dir . p` over the primitive's points (its extent along
-    /// `dir`, for classifying it against an arbitrary plane), up to the rounding of a dot
-    /// product (callers pad). By default from the corners of its bounds.
-    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
-        let b = self.bounds(prim);
-        let up = dir.cmpge(Vec3A::ZERO);
-        (
-            dir.dot(Vec3A::select(up, b.min, b.max)),
-            dir.dot(Vec3A::select(up, b.max, b.min)),
-        )
-    }
-    /// The primitive's own plane `(unit normal, offset)`, `normal . p = offset` on it (candidate
-    /// planes of autopartition BSPs); `None` for curved or zero-area primitives.
-    fn own_plane(&self, _prim: u32) -> Option<(Vec3A, f32)> {
-        None
-    }
-    /// The triangle primitive `prim` is, when this geometry tests it with the kernel's lane
-    /// form in [`Geometry::intersect_block`] (triangle-only scenes); `None` otherwise, and
-    /// indices then keep leaves of primitive ids.
-    fn block_triangle(&self, _prim: u32) -> Option<Triangle> {
-        None
-    }
-    /// [`Geometry::intersect`] on the four lanes of `block`, whose corners are copies of
-    /// `block_triangle(block.ids[i])`: bit `i` of the mask is set and `t[i]` holds the `t`
-    /// exactly when `intersect(block.ids[i], ray, t_max)` is `Some(t)`, bit for bit.
-    #[inline]
-    fn intersect_block(&self, block: &TriangleBlock, ray: &Ray, t_max: f32) -> (u32, [f32; 4]) {
-        let mut out = (0, [0.0; 4]);
-        for (i, &prim) in block.ids.iter().enumerate() {
-            if let Some(t) = self.intersect(prim, ray, t_max) {
-                out.0 |= 1 << i;
-                out.1[i] = t;
-            }
-        }
-        out
-    }
-    /// All primitives as triangles (ids = positions), when the scene has nothing else: for
-    /// outside peers that build their own triangle structures. `None` by default.
-    fn triangles_only(&self) -> Option<&[Triangle]> {
-        None
-    }
-}
-
-/// Extent of a triangle along `dir` (see [`Geometry::extent_along`]).
+/// Extent of a triangle along `dir` (see [`ShapeQueries::extent_along`]).
 #[inline]
 fn triangle_extent(t: &Triangle, dir: Vec3A) -> (f32, f32) {
     let d = t.v.map(|v| dir.dot(v));
     (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]))
 }
 
-/// A triangle's own plane (see [`Geometry::own_plane`]).
+/// A triangle's own plane (see [`ShapeQueries::own_plane`]).
 fn triangle_plane(t: &Triangle) -> Option<(Vec3A, f32)> {
     let n = t.normal();
     (n != Vec3A::ZERO).then(|| (n, n.dot(t.v[0])))
@@ -181,24 +103,6 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
         let tri = &self.tris[prim as usize];
         accept(K::intersect(tri, ray, ray.t_max), tri.bounds(), ray, t_max)
     }
-    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
-        triangle_overlaps_box(&self.tris[prim as usize], cell)
-    }
-    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
-        triangle_clipped_bounds(&self.tris[prim as usize], cell)
-    }
-    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
-        triangle_extent(&self.tris[prim as usize], dir)
-    }
-    fn own_plane(&self, prim: u32) -> Option<(Vec3A, f32)> {
-        triangle_plane(&self.tris[prim as usize])
-    }
-    fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
-        self.tris[prim as usize].normal()
-    }
-    fn block_triangle(&self, prim: u32) -> Option<Triangle> {
-        Some(self.tris[prim as usize])
-    }
     /// The kernel's lane form decides what it can and its hits go through [`accept_lanes`];
     /// undecided lanes take the scalar kernel and [`accept`], as in [`Geometry::intersect`].
     /// A block the lane form decided to be all misses (most blocks a ray tests) skips the
@@ -221,6 +125,27 @@ impl<K: TriangleKernel> Geometry for Triangles<K> {
             }
         }
         out
+    }
+}
+
+impl<K: TriangleKernel> ShapeQueries for Triangles<K> {
+    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
+        triangle_overlaps_box(&self.tris[prim as usize], cell)
+    }
+    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
+        triangle_clipped_bounds(&self.tris[prim as usize], cell)
+    }
+    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
+        triangle_extent(&self.tris[prim as usize], dir)
+    }
+    fn own_plane(&self, prim: u32) -> Option<(Vec3A, f32)> {
+        triangle_plane(&self.tris[prim as usize])
+    }
+    fn normal(&self, prim: u32, _ray: &Ray, _t: f32) -> Vec3A {
+        self.tris[prim as usize].normal()
+    }
+    fn block_triangle(&self, prim: u32) -> Option<Triangle> {
+        Some(self.tris[prim as usize])
     }
     fn triangles_only(&self) -> Option<&[Triangle]> {
         Some(&self.tris)
@@ -275,6 +200,9 @@ impl<K: TriangleKernel> Geometry for Mixed<K> {
             }
         }
     }
+}
+
+impl<K: TriangleKernel> ShapeQueries for Mixed<K> {
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
         let i = prim as usize;
         match self.tris.get(i) {
@@ -370,6 +298,9 @@ impl<K: TriangleKernel> Geometry for WithShapes<K> {
             Prim::Shape(s) => accept(s.intersect(ray, ray.t_max), s.bounds(), ray, t_max),
         }
     }
+}
+
+impl<K: TriangleKernel> ShapeQueries for WithShapes<K> {
     fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
         match self.prim(prim) {
             Prim::Triangle(t) => triangle_overlaps_box(t, cell),

@@ -8,6 +8,7 @@ mod error;
 pub mod file;
 pub mod generators;
 mod geometry;
+mod geometry_traits;
 pub mod gltf;
 mod load;
 mod mapped;
@@ -25,9 +26,8 @@ pub mod triangle_mesh;
 
 pub use area_light::{AreaLight, MAX_AREA_LIGHT_SAMPLES};
 pub use error::{Location, SceneError};
-pub use geometry::{
-    Geometry, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
-};
+pub use geometry::{GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry};
+pub use geometry_traits::{Geometry, GeometryWrapper, ShapeQueries};
 pub use load::load_scene;
 pub use material::{Material, MaterialMap};
 pub use meshes_dir::meshes_in;

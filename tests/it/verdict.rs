@@ -16,8 +16,7 @@ use accelbench::index::{
 use accelbench::rays::incoherent_rays;
 use accelbench::report::suite_report::{RunMeta, write_suite_report};
 use accelbench::report::verdict::{verdict_text, verdicts};
-use accelbench::scene::{Geometry, Scene, Triangles, generators};
-use glam::Vec3A;
+use accelbench::scene::{Geometry, GeometryWrapper, Scene, Triangles, generators};
 use indicatif::ProgressBar;
 use scraper::{Html, Selector};
 use std::sync::{Arc, Mutex};
@@ -199,6 +198,13 @@ struct RayLog {
     calls: Arc<Mutex<Vec<usize>>>,
 }
 
+impl GeometryWrapper for RayLog {
+    type Inner = Triangles<Exact>;
+    fn inner(&self) -> &Triangles<Exact> {
+        &self.inner
+    }
+}
+
 impl Geometry for RayLog {
     fn len(&self) -> usize {
         self.inner.len()
@@ -211,12 +217,6 @@ impl Geometry for RayLog {
         let i = self.origins.iter().position(|x| *x == o).unwrap();
         self.calls.lock().unwrap().push(i);
         self.inner.intersect(prim, ray, t_max)
-    }
-    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
-        self.inner.overlaps_box(prim, cell)
-    }
-    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
-        self.inner.normal(prim, ray, t)
     }
 }
 

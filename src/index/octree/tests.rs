@@ -9,7 +9,7 @@ use super::*;
 use crate::geometry::triangle::Watertight;
 use crate::geometry::{Aabb, Triangle};
 use crate::index::NoStats;
-use crate::scene::{Triangles, generators};
+use crate::scene::{GeometryWrapper, ShapeQueries, Triangles, generators};
 use glam::{Vec3, Vec3A};
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -227,6 +227,13 @@ thread_local! {
 #[derive(Clone)]
 struct Recording(Triangles<Watertight>);
 
+impl GeometryWrapper for Recording {
+    type Inner = Triangles<Watertight>;
+    fn inner(&self) -> &Triangles<Watertight> {
+        &self.0
+    }
+}
+
 impl Geometry for Recording {
     fn len(&self) -> usize {
         self.0.len()
@@ -237,12 +244,6 @@ impl Geometry for Recording {
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
         TESTED.with(|t| t.borrow_mut().push(prim));
         self.0.intersect(prim, ray, t_max)
-    }
-    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
-        self.0.overlaps_box(prim, cell)
-    }
-    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
-        self.0.normal(prim, ray, t)
     }
 }
 

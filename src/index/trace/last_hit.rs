@@ -17,10 +17,9 @@
 //!   any-hit query stopped at, kept for the next ray.
 
 use crate::geometry::triangle::lanes::TriangleBlock;
-use crate::geometry::{Aabb, Hit, Ray, Triangle};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::index::{Index, Stats};
-use crate::scene::Geometry;
-use glam::Vec3A;
+use crate::scene::{Geometry, GeometryWrapper};
 use std::sync::atomic::AtomicU32;
 use std::sync::atomic::Ordering::Relaxed;
 
@@ -29,7 +28,7 @@ const NOT_FOUND: u32 = u32::MAX;
 
 /// A geometry whose kernel sees `kernel_t_max` as the ray's `t_max` whatever the ray passed in
 /// says (see the module doc), and which notes the last primitive it reported a hit on;
-/// everything else is the inner geometry's. One per worker (the note is a relaxed atomic only
+/// everything else is the inner geometry's ([`GeometryWrapper`]). One per worker (the note is a relaxed atomic only
 /// because geometries must be `Sync`; nothing else reads it).
 pub struct KernelRange<G> {
     inner: G,
@@ -69,15 +68,19 @@ impl<G: Clone> Clone for KernelRange<G> {
     }
 }
 
+impl<G: Geometry> GeometryWrapper for KernelRange<G> {
+    type Inner = G;
+    fn inner(&self) -> &G {
+        &self.inner
+    }
+}
+
 impl<G: Geometry> Geometry for KernelRange<G> {
     fn len(&self) -> usize {
         self.inner.len()
     }
     fn bounds(&self, prim: u32) -> Aabb {
         self.inner.bounds(prim)
-    }
-    fn centroid(&self, prim: u32) -> Vec3A {
-        self.inner.centroid(prim)
     }
     #[inline(always)]
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
@@ -99,24 +102,6 @@ impl<G: Geometry> Geometry for KernelRange<G> {
             self.found.store(block.ids[last as usize], Relaxed);
         }
         (mask, t)
-    }
-    fn block_triangle(&self, prim: u32) -> Option<Triangle> {
-        self.inner.block_triangle(prim)
-    }
-    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
-        self.inner.overlaps_box(prim, cell)
-    }
-    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
-        self.inner.clipped_bounds(prim, cell)
-    }
-    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
-        self.inner.normal(prim, ray, t)
-    }
-    fn extent_along(&self, prim: u32, dir: Vec3A) -> (f32, f32) {
-        self.inner.extent_along(prim, dir)
-    }
-    fn own_plane(&self, prim: u32) -> Option<(Vec3A, f32)> {
-        self.inner.own_plane(prim)
     }
 }
 
@@ -177,10 +162,11 @@ pub fn any_hit<I: Index, G: Geometry, S: Stats>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Triangle;
     use crate::geometry::triangle::Exact;
     use crate::index::{BuildError, IndexInfo, NoStats};
     use crate::scene::Triangles;
-    use glam::Vec3;
+    use glam::{Vec3, Vec3A};
 
     /// A peer that answers "occluded" with a test of its own, never asking the geometry.
     struct OwnTest;

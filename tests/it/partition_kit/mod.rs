@@ -7,7 +7,7 @@ use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};
 use accelbench::index::kit::near_far::{NearFarIndex, Partition};
 use accelbench::index::{BuildError, Counters, Index, IndexSpec, build_index, build_index_on};
 use accelbench::rays::SplitMix64;
-use accelbench::scene::{Geometry, Scene, Triangles, generators};
+use accelbench::scene::{Geometry, GeometryWrapper, Scene, Triangles, generators};
 use glam::{Vec3, Vec3A};
 use std::sync::{Arc, Mutex};
 
@@ -156,6 +156,13 @@ impl Recording {
     }
 }
 
+impl GeometryWrapper for Recording {
+    type Inner = Triangles<Watertight>;
+    fn inner(&self) -> &Triangles<Watertight> {
+        &self.inner
+    }
+}
+
 impl Geometry for Recording {
     fn len(&self) -> usize {
         self.inner.len()
@@ -166,15 +173,6 @@ impl Geometry for Recording {
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
         self.calls.lock().unwrap().push(prim);
         self.inner.intersect(prim, ray, t_max)
-    }
-    fn overlaps_box(&self, prim: u32, cell: &Aabb) -> bool {
-        self.inner.overlaps_box(prim, cell)
-    }
-    fn clipped_bounds(&self, prim: u32, cell: &Aabb) -> Aabb {
-        self.inner.clipped_bounds(prim, cell)
-    }
-    fn normal(&self, prim: u32, ray: &Ray, t: f32) -> Vec3A {
-        self.inner.normal(prim, ray, t)
     }
 }
 
