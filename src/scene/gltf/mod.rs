@@ -64,6 +64,12 @@ pub fn load_gltf(path: &Path) -> Result<TriangleMesh, SceneError> {
         let p = p.to_string();
         !(p.ends_with("[\"POSITION\"].min") || p.ends_with("[\"POSITION\"].max"))
     };
+    // The crate's validation reads the POSITION accessor of every primitive without checking
+    // its index (gltf-json 1.4.1, `primitive_validate_hook`), so an index out of range is
+    // refused here first.
+    if let Some((at, message)) = position_out_of_range(&root) {
+        return Err(bad(at, message));
+    }
     let doc = gltf::Document::from_json_without_validation(root);
     let mut errs = Vec::new();
     doc.as_json()
@@ -113,7 +119,7 @@ pub fn load_gltf(path: &Path) -> Result<TriangleMesh, SceneError> {
                 }
                 continue;
             }
-            let Some(pos) = prim.get(&gltf::Semantic::Positions) else {
+            let Some(pos) = prim.get(&gltf::json::mesh::Semantic::Positions) else {
                 return Err(bad(at(), "the primitive has no POSITION attribute".into()));
             };
             let mut positions = accessor::positions(&buffers, path, &pos)?;
@@ -186,4 +192,26 @@ fn offset_of(text: &[u8], line: usize, column: usize) -> usize {
         .map(<[u8]>::len)
         .sum();
     (start + column.saturating_sub(1)).min(text.len())
+}
+
+/// The first primitive whose `POSITION` attribute names an accessor the document lacks: its
+/// JSON path and what to fix.
+fn position_out_of_range(root: &gltf::json::Root) -> Option<(Location, String)> {
+    use gltf::json::validation::Checked;
+    let position = Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    root.meshes.iter().enumerate().find_map(|(m, mesh)| {
+        mesh.primitives.iter().enumerate().find_map(|(p, prim)| {
+            let index = prim.attributes.get(&position)?.value();
+            (index >= root.accessors.len()).then(|| {
+                (
+                    Location::Json(format!("meshes[{m}].primitives[{p}].attributes.POSITION")),
+                    format!(
+                        "names accessor {index}, but the document has {} accessors; point it at \
+                         an accessor of the document",
+                        root.accessors.len()
+                    ),
+                )
+            })
+        })
+    })
 }
