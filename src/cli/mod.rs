@@ -23,6 +23,7 @@ macro_rules! print {
 mod out;
 
 mod accuracy;
+mod animate;
 mod compare;
 mod gen_obj;
 mod info;
@@ -59,6 +60,8 @@ pub struct Cli {
 enum Command {
     /// Run the suite: every scene x index x ray set x thread count, verified, with a report.
     Run(run::RunArgs),
+    /// A moving scene, frame after frame: refit against rebuild per index, verified per frame.
+    Animate(animate::AnimateArgs),
     /// Every index on one generator at growing sizes: build time, memory and rays/s against size.
     Scale(scale::ScaleArgs),
     /// Only verify: every index against brute force and each other, no timing.
@@ -96,6 +99,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Run(a) => run::run(a),
+        Command::Animate(a) => animate::run(a),
         Command::Verify(a) => verify::run(a),
         Command::Scale(a) => scale::run(a),
         Command::Info(a) => info::run(a),

@@ -1,5 +1,6 @@
 //! The measuring and checking machinery shared by the CLI, benches and tests.
 
+pub mod animate;
 pub mod contain;
 pub mod interrupt;
 pub mod median_interval;

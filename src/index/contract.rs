@@ -32,4 +32,19 @@ pub trait Index: Sized + Send + Sync + 'static {
 
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;
+
+    /// Whether [`Index::refit`] updates the index in place.
+    const REFIT: bool = false;
+
+    /// Moves the index to `geom`, the same primitives (same count, same ids) at new positions:
+    /// the topology is kept and every bound is recomputed bottom up, so the hit contract holds
+    /// on `geom` as after a build (only the tree's quality may fall). Indices without a refit
+    /// refuse with [`BuildError::Unsupported`]; callers rebuild them instead.
+    fn refit<G: Geometry>(&mut self, geom: &G) -> Result<(), BuildError> {
+        let _ = geom;
+        Err(BuildError::Unsupported {
+            index: std::any::type_name::<Self>().to_owned(),
+            reason: "it has no refit; rebuild it".into(),
+        })
+    }
 }

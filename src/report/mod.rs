@@ -2,6 +2,7 @@
 //! SVG charts (line, grouped bar, labelled scatter). Plots are SVG so they need no fonts and
 //! open in any browser.
 
+pub mod animate_report;
 mod chart;
 mod chart_axes;
 mod chart_legend;

@@ -320,7 +320,36 @@ impl<K: TriangleKernel> ShapeQueries for WithShapes<K> {
 /// Something to run on a concrete geometry type (closures cannot be generic).
 pub trait GeometryVisitor {
     type Output;
-    fn visit<G: Geometry>(self, geom: G) -> Self::Output;
+    fn visit<G: FromScene>(self, geom: G) -> Self::Output;
+}
+
+/// A geometry [`with_geometry`] makes from a scene's primitives: the same type over another
+/// frame of the same scene (its primitives moved, their kinds and ids kept) is
+/// [`FromScene::from_scene`] of that frame.
+pub trait FromScene: Geometry {
+    fn from_scene(data: &SceneGeometry) -> Self;
+}
+
+impl<K: TriangleKernel> FromScene for Triangles<K> {
+    fn from_scene(data: &SceneGeometry) -> Self {
+        Triangles::new(data.triangles.clone())
+    }
+}
+
+impl<K: TriangleKernel> FromScene for Mixed<K> {
+    fn from_scene(data: &SceneGeometry) -> Self {
+        Mixed::new(data.triangles.clone(), data.spheres.clone())
+    }
+}
+
+impl<K: TriangleKernel> FromScene for WithShapes<K> {
+    fn from_scene(data: &SceneGeometry) -> Self {
+        WithShapes::new(
+            data.triangles.clone(),
+            data.spheres.clone(),
+            data.shapes.clone(),
+        )
+    }
 }
 
 /// Runs `v` on the geometry type that fits the scene: scenes with shapes get [`WithShapes`],

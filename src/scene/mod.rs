@@ -14,6 +14,7 @@ mod load;
 mod mapped;
 mod material;
 mod meshes_dir;
+pub mod motion;
 pub mod obj;
 mod obj_statements;
 mod obj_text;
@@ -26,7 +27,9 @@ pub mod triangle_mesh;
 
 pub use area_light::{AreaLight, MAX_AREA_LIGHT_SAMPLES};
 pub use error::{Location, SceneError};
-pub use geometry::{GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry};
+pub use geometry::{
+    FromScene, GeometryVisitor, Mixed, SceneGeometry, Triangles, WithShapes, with_geometry,
+};
 pub use geometry_traits::{Geometry, GeometryWrapper, ShapeQueries};
 pub use load::load_scene;
 pub use material::{Material, MaterialMap};

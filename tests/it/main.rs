@@ -7,6 +7,7 @@ mod partition_kit;
 
 mod accuracy;
 mod agreement;
+mod animate;
 mod bounded_reads;
 mod bsp;
 mod bvh;

@@ -134,7 +134,7 @@ struct Probe {
 
 impl accelbench::scene::GeometryVisitor for Probe {
     type Output = bool;
-    fn visit<G: accelbench::scene::Geometry>(self, geom: G) -> bool {
+    fn visit<G: accelbench::scene::FromScene>(self, geom: G) -> bool {
         geom.intersect(self.prim, &self.ray, self.ray.t_max)
             .is_some()
     }
@@ -181,7 +181,7 @@ struct CellCheck {
 
 impl accelbench::scene::GeometryVisitor for CellCheck {
     type Output = CellReport;
-    fn visit<G: accelbench::scene::Geometry>(self, geom: G) -> CellReport {
+    fn visit<G: accelbench::scene::FromScene>(self, geom: G) -> CellReport {
         use accelbench::geometry::Aabb;
         let size = self.bounds.extent() / self.cells as f32;
         let cell = |i: [usize; 3]| {

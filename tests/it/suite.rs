@@ -263,6 +263,15 @@ impl TraceIndex for Logged {
     fn has_single(&self) -> bool {
         self.inner.has_single()
     }
+    fn can_refit(&self) -> bool {
+        self.inner.can_refit()
+    }
+    fn refit(
+        &mut self,
+        frame: &accelbench::scene::SceneGeometry,
+    ) -> Result<(), accelbench::index::BuildError> {
+        self.inner.refit(frame)
+    }
     fn closest_hit(&self, ray: &Ray) -> Option<accelbench::geometry::Hit> {
         self.inner.closest_hit(ray)
     }

@@ -16,6 +16,7 @@ mod build;
 mod packet;
 pub mod params;
 mod prim_ref;
+pub(crate) mod refit;
 mod spatial;
 mod sweep;
 mod traverse;
@@ -45,8 +46,10 @@ pub struct Bvh {
     /// Primitives of the scene (with spatial splits, fewer than `prim_ids`).
     prims: usize,
     /// SAH cost of the tree (expected node visits times the cost ratio plus primitive tests,
-    /// for a ray that hits the root box), a quality figure for reports.
+    /// for a ray that hits the root box), a quality figure for reports; recomputed by a refit.
     sah_cost: f64,
+    /// The build's cost of a node visit relative to a primitive test, for the SAH cost.
+    cost_ratio: f32,
 }
 
 impl Index for Bvh {
@@ -60,6 +63,16 @@ impl Index for Bvh {
     }
 
     walk::tree_queries!();
+
+    const REFIT: bool = true;
+
+    /// Bounds recomputed bottom up ([`refit`]); nodes, leaves and ids kept.
+    fn refit<G: Geometry>(&mut self, geom: &G) -> Result<(), BuildError> {
+        refit::check_same_count(geom, self.prims, "bvh")?;
+        self.root_bounds = refit::refit_nodes(geom, self.root, &mut self.nodes, &self.prim_ids)?;
+        self.sah_cost = sah_cost(self.root, self.root_bounds, &self.nodes, self.cost_ratio);
+        Ok(())
+    }
 
     fn info(&self) -> IndexInfo {
         let memory_bytes =
@@ -125,7 +138,7 @@ impl Bvh {
         }
         let clip: &dyn spatial::Clip = geom;
         let built = build::build(refs, &cfg, cfg.spatial_splits.then_some(clip));
-        let sah_cost = sah_cost(&built, cfg.cost_ratio);
+        let sah_cost = sah_cost(built.root, built.root_bounds, &built.nodes, cfg.cost_ratio);
         Ok(Bvh {
             root_bounds: built.root_bounds,
             root: built.root,
@@ -135,6 +148,7 @@ impl Bvh {
             depth: built.depth,
             prims: geom.len(),
             sah_cost,
+            cost_ratio: cfg.cost_ratio,
         })
     }
 
@@ -159,8 +173,8 @@ impl Bvh {
 
 /// Surface area heuristic cost of a flattened tree relative to its root's area: inner nodes
 /// cost `cost_ratio`, leaves their primitive count, each weighted by its area.
-fn sah_cost(built: &build::Built, cost_ratio: f32) -> f64 {
-    let root = built.root_bounds.surface_area() as f64;
+fn sah_cost(root_ref: Child, root_bounds: Aabb, nodes: &[Node], cost_ratio: f32) -> f64 {
+    let root = root_bounds.surface_area() as f64;
     if root <= 0.0 {
         return 0.0;
     }
@@ -172,10 +186,9 @@ fn sah_cost(built: &build::Built, cost_ratio: f32) -> f64 {
         };
         per_area * b.surface_area() as f64
     };
-    let children: f64 = built
-        .nodes
+    let children: f64 = nodes
         .iter()
         .flat_map(|n| (0..2).map(move |i| cost(n.children[i], &n.child_bounds(i))))
         .sum();
-    (cost(built.root, &built.root_bounds) + children) / root
+    (cost(root_ref, &root_bounds) + children) / root
 }

@@ -4,7 +4,7 @@
 use super::spec::IndexSpec;
 use crate::geometry::TriangleKernelKind;
 use crate::index::{BatchIndex, BuildError, Index, TraceIndex, build_index_on};
-use crate::scene::{Geometry, GeometryVisitor, SceneGeometry, with_geometry};
+use crate::scene::{FromScene, GeometryVisitor, SceneGeometry, with_geometry};
 use serde::Deserialize;
 
 /// How the registry builds one of its indices.
@@ -33,12 +33,9 @@ pub(super) fn build_dyn<I: BatchIndex>(
     }
     impl<I: BatchIndex> GeometryVisitor for Visit<'_, I> {
         type Output = Result<Box<dyn TraceIndex>, BuildError>;
-        fn visit<G: Geometry>(self, geom: G) -> Self::Output {
-            Ok(Box::new(build_index_on::<I, G>(
-                self.name,
-                geom,
-                self.params,
-            )?))
+        fn visit<G: FromScene>(self, geom: G) -> Self::Output {
+            let bound = build_index_on::<I, G>(self.name, geom, self.params)?;
+            Ok(Box::new(bound.movable()))
         }
     }
     let params = parse_params::<I>(spec)?;

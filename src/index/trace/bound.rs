@@ -9,7 +9,7 @@ use super::query::{AnyHit, Closest};
 use super::trace_index::TraceIndex;
 use crate::geometry::{Hit, Ray};
 use crate::index::{BuildError, Counters, Index, IndexInfo, NoStats};
-use crate::scene::Geometry;
+use crate::scene::{FromScene, Geometry, SceneGeometry};
 use std::time::Instant;
 
 /// Builds index `I` over a concrete geometry (for tests and benches that want static types).
@@ -27,6 +27,7 @@ pub fn build_index_on<I: Index, G: Geometry>(
     let mut info = index.info();
     info.build_time = build_time;
     Ok(BoundIndex {
+        reframe: None,
         params: toml::to_string(&params)
             .unwrap_or_default()
             .trim()
@@ -45,6 +46,19 @@ pub struct BoundIndex<I: Index, G: Geometry> {
     name: String,
     params: String,
     info: IndexInfo,
+    /// How to make `G` over another frame of the scene, for [`TraceIndex::refit`]; `None`
+    /// for geometries not made from a scene ([`BoundIndex::movable`] sets it).
+    reframe: Option<fn(&SceneGeometry) -> G>,
+}
+
+impl<I: Index, G: FromScene> BoundIndex<I, G> {
+    /// The index able to follow its scene's frames ([`TraceIndex::refit`]).
+    pub fn movable(self) -> Self {
+        BoundIndex {
+            reframe: Some(G::from_scene),
+            ..self
+        }
+    }
 }
 
 impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
@@ -62,6 +76,26 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
     }
     fn has_single(&self) -> bool {
         I::SINGLE
+    }
+    fn can_refit(&self) -> bool {
+        I::REFIT && self.reframe.is_some()
+    }
+    fn refit(&mut self, frame: &SceneGeometry) -> Result<(), BuildError> {
+        let reframe = self
+            .reframe
+            .filter(|_| I::REFIT)
+            .ok_or_else(|| BuildError::Unsupported {
+                index: self.name.clone(),
+                reason: "it has no refit; rebuild it".into(),
+            })?;
+        let geom = reframe(frame);
+        self.index.refit(&geom)?;
+        self.geom = geom;
+        self.info = IndexInfo {
+            build_time: self.info.build_time,
+            ..self.index.info()
+        };
+        Ok(())
     }
     fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         self.index.closest_hit(&self.geom, ray, &mut NoStats)

@@ -4,7 +4,8 @@
 
 use super::mode::TraceMode;
 use crate::geometry::{Hit, Ray};
-use crate::index::{Counters, IndexInfo};
+use crate::index::{BuildError, Counters, IndexInfo};
+use crate::scene::SceneGeometry;
 
 /// The object-safe face of a built index. Batch methods run in parallel on the current rayon
 /// pool (`ThreadPool::install` picks the thread count); single-ray methods are for callers that
@@ -28,6 +29,14 @@ pub trait TraceIndex: Send + Sync {
             TraceMode::Packets(_) => true,
         }
     }
+    /// Whether [`TraceIndex::refit`] can follow the scene's frames in place.
+    fn can_refit(&self) -> bool;
+    /// Moves the index to `frame`, another frame of the scene it was built on (the same
+    /// primitives, same kinds and ids, at new positions), by [`crate::index::Index::refit`];
+    /// `info` then describes the refitted index (its `build_time` stays the first build's).
+    /// [`BuildError::Unsupported`] when the index has no refit. After any other error the
+    /// index is unusable: drop it and rebuild.
+    fn refit(&mut self, frame: &SceneGeometry) -> Result<(), BuildError>;
     fn closest_hit(&self, ray: &Ray) -> Option<Hit>;
     fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit>;
     fn any_hit(&self, ray: &Ray) -> bool;

@@ -13,6 +13,7 @@
 
 mod node;
 mod packet;
+mod refit;
 mod traverse;
 
 use crate::geometry::Aabb;
@@ -38,6 +39,10 @@ pub struct WideBvh<const C: usize> {
     prims: usize,
     leaves: usize,
     depth: u32,
+    /// SAH cost of the tree ([`refit::sah_cost`]), a quality figure; recomputed by a refit.
+    sah_cost: f64,
+    /// The build's cost of a node visit relative to a primitive test, for the SAH cost.
+    cost_ratio: f32,
 }
 
 /// Four children per node.
@@ -72,6 +77,8 @@ impl<const C: usize> Index for WideBvh<C> {
                 .chain(leaf_refs)
                 .filter(|c| c.is_leaf()),
         );
+        let cost_ratio = params.config()?.cost_ratio;
+        let sah_cost = refit::sah_cost(wide.root, root_bounds, &wide.nodes, cost_ratio);
         Ok(WideBvh {
             root_bounds,
             root: wide.root,
@@ -81,10 +88,26 @@ impl<const C: usize> Index for WideBvh<C> {
             prims: geom.len(),
             leaves: wide.leaves,
             depth: wide.depth,
+            sah_cost,
+            cost_ratio,
         })
     }
 
     walk::tree_queries!();
+
+    const REFIT: bool = true;
+
+    /// Triangle copies refreshed, bounds recomputed bottom up ([`refit`]); nodes and leaves
+    /// kept.
+    fn refit<G: Geometry>(&mut self, geom: &G) -> Result<(), BuildError> {
+        let name = if C == 1 { "bvh4" } else { "bvh8" };
+        crate::index::bvh::refit::check_same_count(geom, self.prims, name)?;
+        refit::refresh_blocks(geom, &mut self.leaf_store, name)?;
+        self.root_bounds =
+            refit::refit_nodes(geom, self.root, &mut self.nodes, &self.leaf_store, name)?;
+        self.sah_cost = refit::sah_cost(self.root, self.root_bounds, &self.nodes, self.cost_ratio);
+        Ok(())
+    }
 
     fn info(&self) -> IndexInfo {
         let memory_bytes = size_of::<Aabb>()
@@ -107,6 +130,7 @@ impl<const C: usize> Index for WideBvh<C> {
                     "children_per_node".into(),
                     children as f64 / self.nodes.len().max(1) as f64,
                 ),
+                ("sah_cost".into(), self.sah_cost),
             ],
             ..IndexInfo::default()
         }

@@ -1,0 +1,151 @@
+//! `accelbench animate`: a moving scene traced frame after frame, every index kept up to date by
+//! a refit (where it has one) and by a rebuild, with the cost per frame, the tree's quality and
+//! every frame verified against brute force ([`crate::harness::animate`]).
+
+use super::kernel_arg::parse_kernel;
+use super::run::progress_bar;
+use super::suite_args::split_list;
+use super::threads::{parse_threads, with_threads};
+use crate::geometry::TriangleKernelKind;
+use crate::harness::animate::{AnimateConfig, mismatches_fail, run_animation};
+use crate::harness::suite::check_specs;
+use crate::harness::workload::{RaySet, SetSizes};
+use crate::index::{IndexSpec, is_peer};
+use crate::report::animate_report::{summary_markdown, write_animate_report};
+use crate::report::suite_report::run_id_now;
+use crate::scene::load_scene;
+use crate::scene::motion::MotionSpec;
+use anyhow::Context;
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct AnimateArgs {
+    /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name
+    /// (`terrain`, `icosphere:n=100000`): its rest pose.
+    #[arg(long)]
+    scene: String,
+    /// How the scene moves: `twist[:turns=0.25]` (about the vertical axis, more with height)
+    /// or `wave[:amplitude=0.02,waves=2]` (a travelling wave along x lifts it along y).
+    #[arg(long, default_value = "twist")]
+    motion: MotionSpec,
+    /// Frames, the first being the motion's start (time 0) and the last its end (time 1).
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=10_000))]
+    frames: u32,
+    /// Indices, comma-separated, with optional parameters; bvh, bvh4 and bvh8 get a refit row
+    /// beside their rebuild row.
+    #[arg(long, default_value = "bvh,bvh4,bvh8,kdtree,grid")]
+    indices: String,
+    /// Ray sets, comma-separated: primary, incoherent, dof, motion, lens (the same rays on every
+    /// frame, from the rest pose's bounds).
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "primary,incoherent"
+    )]
+    rays: Vec<RaySet>,
+    /// Width and height of the primary image.
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=2048))]
+    primary_size: u32,
+    /// Number of incoherent rays.
+    #[arg(long, default_value_t = 65_536, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 22)))]
+    incoherent: u64,
+    /// Timed passes per ray set and frame (the median is kept).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+    repeats: u32,
+    /// Most primitive-ray tests brute force makes per frame for its verification sample.
+    #[arg(long, default_value_t = 200_000_000, value_parser = clap::value_parser!(u64).range(1..))]
+    verify_budget: u64,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_parser = parse_threads)]
+    threads: Option<usize>,
+    /// Triangle kernel every index uses.
+    #[arg(long, default_value = "exact", value_parser = parse_kernel)]
+    kernel: TriangleKernelKind,
+    /// Report directory [default: reports/animate-<run id>].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
+    let indices: Vec<IndexSpec> = split_list(&a.indices)
+        .iter()
+        .map(|n| {
+            n.parse::<IndexSpec>()
+                .with_context(|| format!("index '{n}'"))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    anyhow::ensure!(
+        !indices.is_empty(),
+        "--indices is empty: name at least one index"
+    );
+    check_specs(&indices, a.kernel)?;
+    let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
+    let cfg = AnimateConfig {
+        motion: a.motion,
+        frames: a.frames as usize,
+        indices,
+        sets: a.rays,
+        sizes: SetSizes {
+            primary_side: a.primary_size,
+            incoherent: a.incoherent as usize,
+            ao_fraction: 0.05,
+        },
+        repeats: a.repeats as usize,
+        kernel: a.kernel,
+        verify_budget: a.verify_budget,
+    };
+    let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
+    let pb = progress_bar(a.quiet);
+    pb.set_length(cfg.frames as u64);
+    let anim = with_threads(threads, || {
+        run_animation(&scene, &cfg, |f| {
+            pb.set_position(f as u64);
+            pb.set_message(format!("frame {f}"));
+        })
+    })?
+    .map_err(anyhow::Error::msg)?;
+    pb.finish_and_clear();
+    let title = format!(
+        "{} ({} primitives), {}, {} frames, {threads} threads",
+        scene.name,
+        scene.len(),
+        cfg.motion,
+        cfg.frames
+    );
+    let dir = a
+        .out
+        .unwrap_or_else(|| PathBuf::from("reports").join(format!("animate-{}", run_id_now())));
+    let files = write_animate_report(&dir, &title, &anim)?;
+    print!("{}", summary_markdown(&title, &anim));
+    eprintln!("report: {} ({} files)", dir.display(), files.len());
+    for (row, frame, first) in &anim.first_mismatches {
+        eprintln!("MISMATCH {row} at frame {frame}: {first}");
+    }
+    let wrong: usize = anim
+        .rows
+        .iter()
+        .filter(|r| mismatches_fail(r))
+        .map(|r| r.mismatches)
+        .sum();
+    anyhow::ensure!(
+        wrong == 0,
+        "verification failed: {wrong} mismatching results against brute force (above)"
+    );
+    let failed: Vec<&str> = anim
+        .failures
+        .iter()
+        .filter(|f| !is_peer(f.row.split('+').next().unwrap_or_default()))
+        .map(|f| f.row.as_str())
+        .collect();
+    anyhow::ensure!(
+        failed.is_empty(),
+        "{} failed (see the summary above): {}",
+        failed.len(),
+        failed.join(", ")
+    );
+    Ok(())
+}

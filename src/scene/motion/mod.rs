@@ -1,0 +1,55 @@
+//! Scenes that move: a [`Motion`] deforms a scene's primitives over time, vertex by vertex,
+//! keeping their number, kinds and ids (the topology), so an index built on one frame can be
+//! refitted to the next ([`crate::index::TraceIndex::refit`]).
+//!
+//! - `twist`: the scene turns about the vertical axis through its centre, by an angle that grows
+//!   with height and with time ([`twist`]).
+//! - `wave`: a travelling wave lifts and lowers the scene vertically ([`wave`]).
+//!
+//! A motion is a pure function of the rest pose and the time `t` in `[0, 1]` (first to last
+//! frame): the same spec and frame give the same primitives, bit for bit. Triangle corners and
+//! sphere centres move; spheres keep their radius, and the other shapes (boxes, polygons, ...)
+//! stay where they are.
+
+mod spec;
+pub mod twist;
+pub mod wave;
+
+pub use spec::MotionSpec;
+
+use super::{Scene, SceneGeometry};
+use crate::geometry::{Aabb, Sphere, Triangle};
+use glam::Vec3A;
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// A deformation of space over time: where the rest-pose point `p` is at time `t`.
+pub trait Motion: Sync {
+    /// The position at time `t` (`0..=1`) of the point at `p` in the rest pose, whose bounds
+    /// are `rest`.
+    fn place(&self, p: Vec3A, rest: &Aabb, t: f32) -> Vec3A;
+}
+
+/// The primitives of `scene` at time `t` under `motion` (triangle corners and sphere centres
+/// placed; shapes unmoved), in the shared form indices are built from.
+pub fn frame_geometry(scene: &Scene, motion: &dyn Motion, t: f32) -> SceneGeometry {
+    let rest = scene.bounds();
+    let place = |p: Vec3A| motion.place(p, &rest, t);
+    let triangles: Vec<Triangle> = scene
+        .triangles
+        .par_iter()
+        .map(|tri| Triangle {
+            v: tri.v.map(place),
+        })
+        .collect();
+    let spheres: Vec<Sphere> = scene
+        .spheres
+        .iter()
+        .map(|s| Sphere::new(place(s.center), s.radius))
+        .collect();
+    SceneGeometry {
+        triangles: Arc::from(triangles),
+        spheres: Arc::from(spheres),
+        shapes: Arc::from(scene.shapes.as_slice()),
+    }
+}

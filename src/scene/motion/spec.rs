@@ -1,0 +1,122 @@
+//! Motion specs on the command line: `twist`, `twist:turns=0.5`, `wave:amplitude=0.02,waves=2`.
+
+use super::Motion;
+use super::twist::Twist;
+use super::wave::Wave;
+use std::fmt;
+use std::str::FromStr;
+
+/// A motion by name with its parameters ([`MotionSpec::from_str`] parses and checks them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MotionSpec {
+    Twist(Twist),
+    Wave(Wave),
+}
+
+/// The motions, with their parameters and defaults, for messages.
+const KNOWN: &str = "twist[:turns=0.25], wave[:amplitude=0.02,waves=2]";
+
+impl MotionSpec {
+    /// The motion itself.
+    pub fn motion(&self) -> &dyn Motion {
+        match self {
+            MotionSpec::Twist(m) => m,
+            MotionSpec::Wave(m) => m,
+        }
+    }
+}
+
+impl fmt::Display for MotionSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MotionSpec::Twist(m) => write!(f, "twist:turns={}", m.turns),
+            MotionSpec::Wave(m) => write!(f, "wave:amplitude={},waves={}", m.amplitude, m.waves),
+        }
+    }
+}
+
+impl FromStr for MotionSpec {
+    type Err = String;
+
+    /// `NAME` or `NAME:key=value,...`; every value a finite number in its range, every key
+    /// known and given once.
+    fn from_str(s: &str) -> Result<MotionSpec, String> {
+        let (name, rest) = s.split_once(':').unwrap_or((s, ""));
+        let (keys, limits): (&[&str], &[(f32, f32)]) = match name.trim() {
+            "twist" => (&["turns"], &[(-16.0, 16.0)]),
+            "wave" => (&["amplitude", "waves"], &[(0.0, 1.0), (0.0, 64.0)]),
+            other => return Err(format!("unknown motion '{other}': choose one of {KNOWN}")),
+        };
+        let mut values: Vec<Option<f32>> = vec![None; keys.len()];
+        for item in rest.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+            let (k, v) = item
+                .split_once('=')
+                .ok_or_else(|| format!("'{item}' in motion '{s}' is not key=value"))?;
+            let k = k.trim();
+            let at = keys.iter().position(|&key| key == k).ok_or_else(|| {
+                format!(
+                    "motion '{name}' has no parameter '{k}': it takes {}",
+                    keys.join(", ")
+                )
+            })?;
+            if values[at].is_some() {
+                return Err(format!(
+                    "'{k}' is given twice in motion '{s}': give it once"
+                ));
+            }
+            let (lo, hi) = limits[at];
+            let x = v
+                .trim()
+                .parse::<f32>()
+                .ok()
+                .filter(|x| x.is_finite() && (lo..=hi).contains(x))
+                .ok_or_else(|| {
+                    format!(
+                        "{k} = '{}' in motion '{s}': use a number from {lo} to {hi}",
+                        v.trim()
+                    )
+                })?;
+            values[at] = Some(x);
+        }
+        Ok(match name.trim() {
+            "twist" => MotionSpec::Twist(Twist {
+                turns: values[0].unwrap_or(0.25),
+            }),
+            _ => MotionSpec::Wave(Wave {
+                amplitude: values[0].unwrap_or(0.02),
+                waves: values[1].unwrap_or(2.0),
+            }),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_defaults_parameters_and_refuses_bad_ones() {
+        let t: MotionSpec = "twist".parse().unwrap();
+        assert_eq!(t, MotionSpec::Twist(Twist { turns: 0.25 }));
+        let w: MotionSpec = "wave:waves=3, amplitude=0.1".parse().unwrap();
+        assert_eq!(
+            w,
+            MotionSpec::Wave(Wave {
+                amplitude: 0.1,
+                waves: 3.0
+            })
+        );
+        assert_eq!(w.to_string().parse::<MotionSpec>().unwrap(), w);
+        for (bad, says) in [
+            ("spin", "unknown motion 'spin'"),
+            ("twist:angle=3", "has no parameter 'angle'"),
+            ("twist:turns", "is not key=value"),
+            ("twist:turns=1,turns=2", "given twice"),
+            ("twist:turns=nan", "use a number from"),
+            ("wave:amplitude=2", "use a number from 0 to 1"),
+        ] {
+            let e = bad.parse::<MotionSpec>().unwrap_err();
+            assert!(e.contains(says), "{bad}: {e}");
+        }
+    }
+}
