@@ -12,6 +12,7 @@ use crate::harness::suite::check_specs;
 use crate::harness::workload::{RaySet, SetSizes};
 use crate::index::{IndexSpec, is_peer};
 use crate::report::animate_report::{summary_markdown, write_animate_report};
+use crate::report::report_dir::ReportDir;
 use crate::report::suite_report::run_id_now;
 use crate::scene::load_scene;
 use crate::scene::motion::MotionSpec;
@@ -84,6 +85,12 @@ pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
     );
     check_specs(&indices, a.kernel)?;
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
+    let dir = a
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("reports").join(format!("animate-{}", run_id_now())));
+    // Claimed first: a second run on the same folder is refused before anything is measured.
+    let claim = ReportDir::claim(&dir)?;
     let cfg = AnimateConfig {
         motion: a.motion,
         frames: a.frames as usize,
@@ -110,18 +117,27 @@ pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
     .map_err(anyhow::Error::msg)?;
     pb.finish_and_clear();
     let title = format!(
-        "{} ({} primitives), {}, {} frames, {threads} threads",
+        "{} ({} primitives), {}, {} frames, {threads} thread{}",
         scene.name,
         scene.len(),
         cfg.motion,
-        cfg.frames
+        cfg.frames,
+        if threads == 1 { "" } else { "s" }
     );
-    let dir = a
-        .out
-        .unwrap_or_else(|| PathBuf::from("reports").join(format!("animate-{}", run_id_now())));
-    let files = write_animate_report(&dir, &title, &anim)?;
+    let files = write_animate_report(claim.path(), &title, &anim)?;
+    let meta = serde_json::json!({
+        "command": std::env::args().collect::<Vec<_>>().join(" "),
+        "scene": scene.name,
+        "motion": cfg.motion.to_string(),
+        "frames": cfg.frames,
+        "threads": threads,
+        "kernel": cfg.kernel.to_string(),
+    });
+    std::fs::write(claim.path().join("meta.json"), format!("{meta:#}\n"))
+        .context("writing meta.json")?;
+    claim.publish()?;
     print!("{}", summary_markdown(&title, &anim));
-    eprintln!("report: {} ({} files)", dir.display(), files.len());
+    eprintln!("report: {} ({} files)", dir.display(), files.len() + 1);
     for (row, frame, first) in &anim.first_mismatches {
         eprintln!("MISMATCH {row} at frame {frame}: {first}");
     }

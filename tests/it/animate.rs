@@ -116,7 +116,7 @@ fn indices_without_a_refit_and_changed_scenes_are_refused() {
 fn animate_writes_a_verified_report_per_frame() {
     let out = tempfile::tempdir().unwrap();
     let dir = out.path().join("anim");
-    let stdout = accelbench_ok(&[
+    let args = [
         "animate",
         "--scene",
         "icosphere:n=2000",
@@ -137,7 +137,12 @@ fn animate_writes_a_verified_report_per_frame() {
         "--quiet",
         "--out",
         dir.to_str().unwrap(),
-    ]);
+    ];
+    // A second run on the same folder replaces the first whole.
+    accelbench_ok(&args);
+    std::fs::write(dir.join("stale.svg"), "").unwrap();
+    let stdout = accelbench_ok(&args);
+    assert!(!dir.join("stale.svg").exists());
     let csv = std::fs::read_to_string(dir.join("frames.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().skip(1).collect();
     // Frames 0..3, rows bvh8+refit, bvh8+rebuild, grid+rebuild.
