@@ -3,11 +3,12 @@
 //! every frame verified against brute force ([`crate::harness::animate`]).
 
 use super::kernel_arg::parse_kernel;
-use super::run::progress_bar;
+use super::run::{Interrupted, progress_bar};
 use super::suite_args::split_list;
 use super::threads::{parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
 use crate::harness::animate::{AnimateConfig, mismatches_fail, run_animation};
+use crate::harness::interrupt;
 use crate::harness::suite::check_specs;
 use crate::harness::workload::{RaySet, SetSizes};
 use crate::index::{IndexSpec, is_peer};
@@ -17,6 +18,7 @@ use crate::report::suite_report::run_id_now;
 use crate::scene::load_scene;
 use crate::scene::motion::MotionSpec;
 use anyhow::Context;
+use std::io::IsTerminal;
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -106,12 +108,18 @@ pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
         verify_budget: a.verify_budget,
     };
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
+    interrupt::stop_on_sigint().context("installing the SIGINT handler")?;
     let pb = progress_bar(a.quiet);
     pb.set_length(cfg.frames as u64);
+    // Without a terminal (a log, a test), one line per frame instead of the bar.
+    let plain = !a.quiet && !std::io::stderr().is_terminal();
     let anim = with_threads(threads, || {
         run_animation(&scene, &cfg, |f| {
             pb.set_position(f as u64);
             pb.set_message(format!("frame {f}"));
+            if plain {
+                eprintln!("frame {}/{} started", f + 1, cfg.frames);
+            }
         })
     })?
     .map_err(anyhow::Error::msg)?;
@@ -124,39 +132,49 @@ pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
         cfg.frames,
         if threads == 1 { "" } else { "s" }
     );
-    let files = write_animate_report(claim.path(), &title, &anim)?;
+    let wrong: usize = (anim.rows.iter())
+        .filter(|r| mismatches_fail(r))
+        .map(|r| r.mismatches)
+        .sum();
+    let failed: Vec<&str> = (anim.failures.iter())
+        .filter(|f| !is_peer(f.row.split('+').next().unwrap_or_default()))
+        .map(|f| f.row.as_str())
+        .collect();
+    let status = if anim.interrupted {
+        "interrupted".to_owned()
+    } else if wrong > 0 {
+        format!("failed: verification failed, {wrong} mismatching results")
+    } else if !failed.is_empty() {
+        format!("failed: {} failed ({})", failed.len(), failed.join(", "))
+    } else {
+        "complete".to_owned()
+    };
+    let files = write_animate_report(claim.path(), &title, &status, &anim)?;
     let meta = serde_json::json!({
         "command": std::env::args().collect::<Vec<_>>().join(" "),
         "scene": scene.name,
         "motion": cfg.motion.to_string(),
         "frames": cfg.frames,
+        "frames_done": anim.rows.iter().map(|r| r.frame + 1).max().unwrap_or(0),
         "threads": threads,
         "kernel": cfg.kernel.to_string(),
+        "status": status,
     });
     std::fs::write(claim.path().join("meta.json"), format!("{meta:#}\n"))
         .context("writing meta.json")?;
     claim.publish()?;
-    print!("{}", summary_markdown(&title, &anim));
+    print!("{}", summary_markdown(&title, &status, &anim));
     eprintln!("report: {} ({} files)", dir.display(), files.len() + 1);
     for (row, frame, first) in &anim.first_mismatches {
         eprintln!("MISMATCH {row} at frame {frame}: {first}");
     }
-    let wrong: usize = anim
-        .rows
-        .iter()
-        .filter(|r| mismatches_fail(r))
-        .map(|r| r.mismatches)
-        .sum();
+    if anim.interrupted {
+        return Err(Interrupted(dir).into());
+    }
     anyhow::ensure!(
         wrong == 0,
         "verification failed: {wrong} mismatching results against brute force (above)"
     );
-    let failed: Vec<&str> = anim
-        .failures
-        .iter()
-        .filter(|f| !is_peer(f.row.split('+').next().unwrap_or_default()))
-        .map(|f| f.row.as_str())
-        .collect();
     anyhow::ensure!(
         failed.is_empty(),
         "{} failed (see the summary above): {}",

@@ -136,10 +136,10 @@ impl ScenePictures {
     }
 }
 
-/// `run` stopped by a SIGINT; the command exits with 130, the shell's code for it.
+/// `run` or `animate` stopped by a SIGINT; the command exits with 130, the shell's code for it.
 #[derive(Debug, thiserror::Error)]
 #[error(
-    "interrupted: the report in {0} holds the ray sets finished before the SIGINT (status: interrupted)"
+    "interrupted: the report in {0} holds what was measured before the SIGINT (status: interrupted)"
 )]
 pub struct Interrupted(pub PathBuf);
 

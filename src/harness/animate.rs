@@ -84,6 +84,9 @@ pub struct Animation {
     pub failures: Vec<RowFailure>,
     /// First mismatch of each row that had one, for the message.
     pub first_mismatches: Vec<(String, usize, String)>,
+    /// A SIGINT stopped the animation before its last frame ([`super::interrupt`]): `rows`
+    /// hold the frames finished before.
+    pub interrupted: bool,
 }
 
 /// The ray sets of the rest pose, with their names; an error for a set `animate` cannot make.
@@ -122,6 +125,7 @@ struct Contender {
 }
 
 /// Runs the animation on the current rayon pool; `progress` is told each frame as it starts.
+/// A SIGINT ([`super::interrupt::requested`]) stops it before the next frame.
 pub fn run_animation(
     scene: &Scene,
     cfg: &AnimateConfig,
@@ -142,6 +146,10 @@ pub fn run_animation(
         .collect();
     let mut out = Animation::default();
     for frame in 0..cfg.frames {
+        if super::interrupt::requested() {
+            out.interrupted = true;
+            break;
+        }
         progress(frame);
         let t = frame as f32 / (cfg.frames - 1) as f32;
         let geom = frame_geometry(scene, cfg.motion.motion(), t);

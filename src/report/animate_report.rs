@@ -45,11 +45,11 @@ pub fn overtakes(rows: &[FrameRow]) -> Vec<(String, Option<usize>)> {
     out
 }
 
-/// The Markdown summary: per row, totals over the frames; per index with both rows, where
+/// The Markdown summary: its status (`complete`, `interrupted`, `failed: ...`), per row, totals over the frames; per index with both rows, where
 /// rebuilding overtakes; the failures.
-pub fn summary_markdown(title: &str, anim: &Animation) -> String {
+pub fn summary_markdown(title: &str, status: &str, anim: &Animation) -> String {
     let rows = &anim.rows;
-    let mut md = format!("# {title}\n\n");
+    let mut md = format!("# {title}\n\n**Status: {status}**\n\n");
     md.push_str(
         "| row | frames | update ms (sum) | trace ms (sum) | total ms (sum) | Mrays/s (mean) \
          | SAH first → last | mismatches |\n|---|---|---|---|---|---|---|---|\n",
@@ -104,6 +104,7 @@ type Plot = (
 pub fn write_animate_report(
     dir: &Path,
     title: &str,
+    status: &str,
     anim: &Animation,
 ) -> Result<Vec<PathBuf>, ReportError> {
     let csv = dir.join("frames.csv");
@@ -144,9 +145,11 @@ pub fn write_animate_report(
         }
     }
     let summary = dir.join("summary.md");
-    std::fs::write(&summary, summary_markdown(title, anim)).map_err(|e| ReportError::Write {
-        path: summary.clone(),
-        message: e.to_string(),
+    std::fs::write(&summary, summary_markdown(title, status, anim)).map_err(|e| {
+        ReportError::Write {
+            path: summary.clone(),
+            message: e.to_string(),
+        }
     })?;
     files.push(summary);
     Ok(files)

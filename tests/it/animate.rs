@@ -199,3 +199,63 @@ fn animate_refuses_bad_motions_sets_and_frame_counts() {
     accelbench_fails(&with(&["--frames", "1"]), &["--frames"]);
     accelbench_fails(&with(&["--indices", "nope"]), &["unknown index 'nope'"]);
 }
+
+/// SIGINT during the second frame: `animate` stops before the next frame, writes the frames it
+/// finished with the status `interrupted`, and exits 130.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_animation_keeps_its_finished_frames() {
+    use std::io::BufRead;
+    use std::process::{Command, Stdio};
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("a");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(["animate", "--scene", "icosphere:n=200000", "--frames", "50"])
+        .args([
+            "--indices",
+            "bvh",
+            "--primary-size",
+            "16",
+            "--incoherent",
+            "100",
+        ])
+        .args([
+            "--repeats",
+            "1",
+            "--threads",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut seen = String::new();
+    while !seen.contains("frame 2/50 started") {
+        let mut line = String::new();
+        let n = stderr.read_line(&mut line).unwrap();
+        assert!(n > 0, "animate ended before its second frame:\n{seen}");
+        seen.push_str(&line);
+    }
+    // SAFETY: signals a child process this test started and has not reaped.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{seen}{rest}");
+    let meta = std::fs::read_to_string(out.join("meta.json")).unwrap();
+    let meta: serde_json::Value = serde_json::from_str(&meta).unwrap();
+    assert_eq!(meta["status"], "interrupted");
+    let csv = std::fs::read_to_string(out.join("frames.csv")).unwrap();
+    let frames = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .max();
+    assert!(matches!(frames, Some("0") | Some("1")), "{csv}");
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("**Status: interrupted**"), "{md}");
+}
