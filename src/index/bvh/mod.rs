@@ -171,24 +171,10 @@ impl Bvh {
     }
 }
 
-/// Surface area heuristic cost of a flattened tree relative to its root's area: inner nodes
-/// cost `cost_ratio`, leaves their primitive count, each weighted by its area.
-fn sah_cost(root_ref: Child, root_bounds: Aabb, nodes: &[Node], cost_ratio: f32) -> f64 {
-    let root = root_bounds.surface_area() as f64;
-    if root <= 0.0 {
-        return 0.0;
-    }
-    let cost = |c: Child, b: &Aabb| {
-        let per_area = if c.is_leaf() {
-            c.count as f64
-        } else {
-            cost_ratio as f64
-        };
-        per_area * b.surface_area() as f64
-    };
-    let children: f64 = nodes
+/// The SAH cost of the binary tree ([`refit::sah_cost`]).
+fn sah_cost(root: Child, root_bounds: Aabb, nodes: &[Node], cost_ratio: f32) -> f64 {
+    let children = nodes
         .iter()
-        .flat_map(|n| (0..2).map(move |i| cost(n.children[i], &n.child_bounds(i))))
-        .sum();
-    (cost(root_ref, &root_bounds) + children) / root
+        .flat_map(|n| (0..2).map(move |i| (n.children[i], n.child_bounds(i))));
+    refit::sah_cost(root, root_bounds, children, cost_ratio)
 }

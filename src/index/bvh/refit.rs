@@ -92,3 +92,26 @@ pub(super) fn refit_nodes<G: Geometry>(
     }
     Ok(boxes[root.index as usize])
 }
+
+/// Surface area heuristic cost of a flattened tree relative to its root's area, from every
+/// child reference with its box (`children`): inner nodes cost `cost_ratio`, leaves their
+/// primitive count, each weighted by its box's area. Shared by the binary and the wide trees.
+pub(crate) fn sah_cost(
+    root: Child,
+    root_bounds: Aabb,
+    children: impl Iterator<Item = (Child, Aabb)>,
+    cost_ratio: f32,
+) -> f64 {
+    let area = root_bounds.surface_area() as f64;
+    if area <= 0.0 {
+        return 0.0;
+    }
+    let cost = |(c, b): (Child, Aabb)| {
+        let per_area = match c.is_leaf() {
+            true => c.count as f64,
+            false => cost_ratio as f64,
+        };
+        per_area * b.surface_area() as f64
+    };
+    (cost((root, root_bounds)) + children.map(cost).sum::<f64>()) / area
+}

@@ -104,28 +104,15 @@ pub(super) fn refit_nodes<const C: usize, G: Geometry>(
     Ok(boxes[root.index as usize])
 }
 
-/// Surface area heuristic cost of the wide tree relative to its root's area: an inner node
-/// costs `cost_ratio`, a leaf its primitive count, each weighted by its box's area.
+/// The SAH cost of the wide tree ([`crate::index::bvh::refit::sah_cost`]).
 pub(super) fn sah_cost<const C: usize>(
     root: Child,
     root_bounds: Aabb,
     nodes: &[WideNode<C>],
     cost_ratio: f32,
 ) -> f64 {
-    let area = root_bounds.surface_area() as f64;
-    if area <= 0.0 {
-        return 0.0;
-    }
-    let cost = |c: Child, b: Aabb| {
-        let per_area = match c.is_leaf() {
-            true => c.count as f64,
-            false => cost_ratio as f64,
-        };
-        per_area * b.surface_area() as f64
-    };
-    let children: f64 = nodes
+    let children = nodes
         .iter()
-        .flat_map(|n| (0..n.width()).map(move |i| cost(n.child(i), n.child_box(i))))
-        .sum();
-    (cost(root, root_bounds) + children) / area
+        .flat_map(|n| (0..n.width()).map(move |i| (n.child(i), n.child_box(i))));
+    crate::index::bvh::refit::sah_cost(root, root_bounds, children, cost_ratio)
 }
