@@ -9,12 +9,14 @@
 //! - [`report`]: CSV tables and SVG charts every command writes through.
 //! - [`accuracy`] and [`stress`]: kernel accuracy, watertightness, the stress suite.
 //! - [`cli`]: the command line (a thin layer over the library).
+//! - [`heap_meter`]: the global allocator, counting held and peak heap bytes.
 
 pub mod accuracy;
 pub mod camera;
 pub mod cli;
 pub mod geometry;
 pub mod harness;
+pub mod heap_meter;
 pub mod index;
 pub mod random;
 pub mod rays;

@@ -1,6 +1,9 @@
-//! `accelbench info`: what a scene holds.
+//! `accelbench info`: what a scene holds, and with `--indices` what building each index on it
+//! takes (time, resident memory and the build's peak memory).
 
-use crate::scene::load_scene;
+use crate::geometry::TriangleKernelKind;
+use crate::index::{IndexSpec, build_index};
+use crate::scene::{Scene, load_scene};
 use anyhow::Context;
 
 #[derive(Debug, clap::Args)]
@@ -8,6 +11,14 @@ pub struct InfoArgs {
     /// A mesh (.obj, .ply, .gltf, .glb) or .toml path, or a built-in scene name (`soup`, `soup:n=100000,seed=3`).
     #[arg(long)]
     scene: String,
+    /// Also build these indices (comma-separated specs, `bvh,kdtree:cost_ratio=2`) one after
+    /// another and print each one's build time, resident memory and the heap's high-water mark
+    /// during its build.
+    #[arg(long)]
+    indices: Option<String>,
+    /// Triangle kernel the indices of `--indices` use.
+    #[arg(long, default_value = "exact", value_parser = super::kernel_arg::parse_kernel)]
+    kernel: TriangleKernelKind,
 }
 
 pub fn run(a: InfoArgs) -> anyhow::Result<()> {
@@ -44,6 +55,37 @@ pub fn run(a: InfoArgs) -> anyhow::Result<()> {
             c.fov_deg
         ),
         None => println!("camera:      none (the protocol camera is used)"),
+    }
+    if let Some(list) = &a.indices {
+        builds(&scene, list, a.kernel)?;
+    }
+    Ok(())
+}
+
+/// Builds each index of `list` on `scene` in turn (each dropped before the next) and prints a
+/// table of its build time and its memory in bytes: resident after the build and the heap's
+/// high-water mark during it (`-` where not measured: a C++ peer's own allocator).
+fn builds(scene: &Scene, list: &str, kernel: TriangleKernelKind) -> anyhow::Result<()> {
+    let geom = scene.geometry();
+    println!(
+        "{:<24} {:>10} {:>14} {:>14}",
+        "index", "build ms", "resident B", "peak build B"
+    );
+    for name in super::suite_args::split_list(list) {
+        let spec: IndexSpec = name.parse().with_context(|| format!("index '{name}'"))?;
+        let index = build_index(&spec, &geom, kernel)
+            .with_context(|| format!("building index '{spec}'"))?;
+        let info = index.info();
+        let peak = info
+            .peak_build_bytes
+            .map_or_else(|| "-".to_owned(), |b| b.to_string());
+        println!(
+            "{:<24} {:>10.1} {:>14} {:>14}",
+            spec.to_string(),
+            info.build_time.as_secs_f64() * 1e3,
+            info.memory_bytes,
+            peak
+        );
     }
     Ok(())
 }

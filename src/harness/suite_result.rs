@@ -31,6 +31,10 @@ pub struct ResultRow {
     pub threads: usize,
     pub build_ms: f64,
     pub memory_bytes: usize,
+    /// The heap's high-water mark during the build, in bytes (`IndexInfo::peak_build_bytes`);
+    /// empty where not measured (tinybvh) and in reports older than the column.
+    #[serde(default)]
+    pub peak_build_bytes: Option<usize>,
     pub trace_ms_median: f64,
     pub trace_ms_spread: f64,
     pub mrays_per_s: f64,

@@ -420,6 +420,7 @@ fn result_row(
         threads,
         build_ms: info.build_time.as_secs_f64() * 1e3,
         memory_bytes: info.memory_bytes,
+        peak_build_bytes: info.peak_build_bytes,
         trace_ms_median: median * 1e3,
         trace_ms_spread: spread * 1e3,
         mrays_per_s: n / median / 1e6,

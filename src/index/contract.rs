@@ -33,6 +33,11 @@ pub trait Index: Sized + Send + Sync + 'static {
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;
 
+    /// Whether the index allocates outside Rust's global allocator (a C or C++ library):
+    /// then [`crate::heap_meter`] cannot see its build, and [`Index::info`] gives
+    /// `peak_build_bytes` itself, or `None` where nothing measures it.
+    const FOREIGN_HEAP: bool = false;
+
     /// Whether [`Index::refit`] updates the index in place.
     const REFIT: bool = false;
 

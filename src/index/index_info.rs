@@ -14,6 +14,11 @@ pub struct IndexInfo {
     pub depth: usize,
     /// Heap bytes the index owns (nodes, cell arrays, primitive id arrays), excluding the scene.
     pub memory_bytes: usize,
+    /// The heap's high-water mark during the build, in bytes above what was held before it:
+    /// the finished structure and every temporary of its build. The registry measures it
+    /// ([`crate::heap_meter::peak_during`]); an index allocating outside Rust's allocator
+    /// ([`crate::index::Index::FOREIGN_HEAP`]) gives its own figure, or `None`: not measured.
+    pub peak_build_bytes: Option<usize>,
     /// Primitive references stored (an id in a leaf or cell counts once per leaf or cell).
     pub prim_refs: usize,
     /// Build time, measured by the registry around [`crate::index::Index::build`].

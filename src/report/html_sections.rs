@@ -91,18 +91,29 @@ pub(super) fn cost_tables(rows: &[ResultRow], fits: &[CostFit]) -> String {
     s
 }
 
-/// Build time (ms) and memory (bytes per primitive) per scene and index.
+/// Build time (ms), memory and the build's peak memory (bytes per primitive) per scene and index.
 pub(super) fn build_tables(rows: &[ResultRow]) -> String {
     let labels = uniq_labels(rows);
     let mut s = "<h2>Build time and memory</h2>\n".to_owned();
     type Cell<'a> = &'a dyn Fn(&ResultRow) -> String;
-    let tables: [(&str, &str, Cell); 2] = [
+    let per_prim = |r: &ResultRow, bytes: Option<usize>| {
+        num(
+            bytes.map_or(f64::NAN, |b| b as f64 / r.primitives.max(1) as f64),
+            1,
+        )
+    };
+    let tables: [(&str, &str, Cell); 3] = [
         ("build-ms", "Build time, ms (all threads):", &|r| {
             num(r.build_ms, 2)
         }),
         ("memory", "Memory, bytes per primitive:", &|r| {
-            num(r.memory_bytes as f64 / r.primitives.max(1) as f64, 1)
+            per_prim(r, Some(r.memory_bytes))
         }),
+        (
+            "peak-memory",
+            "Peak memory during the build (structure and temporaries), bytes per primitive:",
+            &|r| per_prim(r, r.peak_build_bytes),
+        ),
     ];
     for (id, caption, cell) in tables {
         let _ = writeln!(

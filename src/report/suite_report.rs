@@ -87,7 +87,7 @@ fn by_index<'a>(rows: &[&'a ResultRow]) -> Vec<(String, Vec<&'a ResultRow>)> {
     v
 }
 
-/// Build time and memory per index of one scene (an index's rows in other modes share its
+/// Build time, resident memory and the build's peak memory per index of one scene (an index's rows in other modes share its
 /// build: they are listed only for an index with no single row).
 fn build_table(rows: &[&ResultRow]) -> String {
     let has_single = |r: &ResultRow| {
@@ -99,15 +99,17 @@ fn build_table(rows: &[&ResultRow]) -> String {
         .copied()
         .filter(|r| r.mode == "single" || !has_single(r))
         .collect();
-    let mut s = "| index | build ms | bytes/prim |\n|---|---:|---:|\n".to_owned();
+    let mut s = "| index | build ms | bytes/prim | peak build bytes/prim |\n|---|---:|---:|---:|\n"
+        .to_owned();
     for (name, rs) in by_index(&built) {
         let r0 = rs[0];
-        let per_prim = r0.memory_bytes as f64 / r0.primitives.max(1) as f64;
+        let per_prim = |bytes: usize| bytes as f64 / r0.primitives.max(1) as f64;
         let _ = writeln!(
             s,
-            "| {name} | {} | {} |",
+            "| {name} | {} | {} | {} |",
             fmt_f(r0.build_ms, 2),
-            fmt_f(per_prim, 1)
+            fmt_f(per_prim(r0.memory_bytes), 1),
+            fmt_f(r0.peak_build_bytes.map_or(f64::NAN, per_prim), 1)
         );
     }
     s
@@ -342,6 +344,7 @@ mod tests {
             threads: 1,
             build_ms: 1.0,
             memory_bytes: 100,
+            peak_build_bytes: Some(300),
             trace_ms_median: 1.0,
             trace_ms_spread: 0.0,
             mrays_per_s: mrays,

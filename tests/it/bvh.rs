@@ -394,10 +394,12 @@ fn spatial_splits_happen_on_slivers_and_the_build_is_deterministic() {
             two > n && two <= 2 * n,
             "{spec}: {two} references at budget 2"
         );
-        // Everything but the build time, which differs between any two builds.
+        // Everything but the build time and the peak heap during the build, which differ
+        // between any two builds (other threads allocate meanwhile).
         let key = |i: &dyn TraceIndex| {
             let info = IndexInfo {
                 build_time: Default::default(),
+                peak_build_bytes: None,
                 ..i.info().clone()
             };
             format!("{info:?}")

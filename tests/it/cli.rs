@@ -291,3 +291,38 @@ fn a_closed_output_pipe_ends_the_command_quietly() {
         "{err}"
     );
 }
+
+/// `info --indices` builds each index and prints its resident memory and the heap's
+/// high-water mark during its build: the mark holds at least the finished structure, and a
+/// build's temporaries (primitive references, bins) put it above.
+#[test]
+fn info_prints_each_index_build_peak_memory_above_its_resident_memory() {
+    let out = accelbench_ok(&[
+        "info",
+        "--scene",
+        "soup:n=20000",
+        "--indices",
+        "bvh,bvh8,grid,kdtree:leaf_size=2",
+    ]);
+    let rows: Vec<Vec<&str>> = out
+        .lines()
+        .skip_while(|l| !l.starts_with("index "))
+        .skip(1)
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    let names: Vec<&str> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(
+        names,
+        ["bvh", "bvh8", "grid", "kdtree:leaf_size=2"],
+        "{out}"
+    );
+    for r in &rows {
+        let resident: u64 = r[2].parse().unwrap();
+        let peak: u64 = r[3].parse().unwrap();
+        assert!(resident > 0 && peak > resident, "{}: {out}", r[0]);
+    }
+    fails_with(
+        &["info", "--scene", "soup:n=10", "--indices", "bvh,nope"],
+        &["index 'nope'", "unknown"],
+    );
+}

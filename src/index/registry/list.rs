@@ -104,16 +104,20 @@ fn unknown(name: &str) -> BuildError {
     BuildError::UnknownIndex(name.to_owned(), index_names().join(", "))
 }
 
+fn find_entry(name: &str) -> Result<&'static Entry, BuildError> {
+    REGISTRY
+        .iter()
+        .find(|e| e.name == name)
+        .ok_or_else(|| unknown(name))
+}
+
 /// Builds the index `spec` over a scene's primitives with the given triangle kernel.
 pub fn build_index(
     spec: &IndexSpec,
     geom: &SceneGeometry,
     kernel: TriangleKernelKind,
 ) -> Result<Box<dyn TraceIndex>, BuildError> {
-    let entry = REGISTRY
-        .iter()
-        .find(|e| e.name == spec.name)
-        .ok_or_else(|| unknown(&spec.name))?;
+    let entry = find_entry(&spec.name)?;
     if geom.is_empty() {
         return Err(BuildError::EmptyScene);
     }

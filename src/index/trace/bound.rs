@@ -21,11 +21,17 @@ pub fn build_index_on<I: Index, G: Geometry>(
     if geom.is_empty() {
         return Err(BuildError::EmptyScene);
     }
-    let start = Instant::now();
-    let index = I::build(&geom, &params)?;
-    let build_time = start.elapsed();
+    let ((index, build_time), peak) = crate::heap_meter::peak_during(|| {
+        let start = Instant::now();
+        let index = I::build(&geom, &params);
+        (index, start.elapsed())
+    });
+    let index = index?;
     let mut info = index.info();
     info.build_time = build_time;
+    if !I::FOREIGN_HEAP {
+        info.peak_build_bytes = Some(peak);
+    }
     Ok(BoundIndex {
         reframe: None,
         params: toml::to_string(&params)

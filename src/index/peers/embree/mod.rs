@@ -66,6 +66,8 @@ pub struct EmbreePeer<const ROBUST: bool> {
     /// Bytes Embree held after the commit (its memory-monitor callback: allocations minus
     /// frees, vertex and index buffers included).
     memory_bytes: usize,
+    /// The most bytes Embree held at once during the build (the same monitor).
+    peak_build_bytes: usize,
     triangles: usize,
     /// Embree's build threads (`threads=N` of the device: the calling rayon pool's size).
     build_threads: usize,
@@ -130,6 +132,7 @@ impl<const ROBUST: bool> EmbreePeer<ROBUST> {
         }
         Ok(EmbreePeer {
             memory_bytes: device.held_bytes(),
+            peak_build_bytes: device.peak_bytes(),
             scene,
             triangles: n,
             build_threads,
@@ -139,6 +142,7 @@ impl<const ROBUST: bool> EmbreePeer<ROBUST> {
 
 impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
     type Params = EmbreeParams;
+    const FOREIGN_HEAP: bool = true;
 
     fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
         Self::build_named(geom, params, Self::NAME)
@@ -166,6 +170,7 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
     fn info(&self) -> IndexInfo {
         IndexInfo {
             memory_bytes: self.memory_bytes,
+            peak_build_bytes: Some(self.peak_build_bytes),
             prim_refs: self.triangles,
             uncounted: true,
             extra: vec![("build_threads".into(), self.build_threads as f64)],

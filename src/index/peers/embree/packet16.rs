@@ -61,6 +61,7 @@ fn set_rays(packet: &mut Ray16, rays: &[Ray]) {
 
 impl Index for EmbreeP16 {
     type Params = EmbreeParams;
+    const FOREIGN_HEAP: bool = true;
 
     fn build<G: Geometry>(geom: &G, params: &EmbreeParams) -> Result<Self, BuildError> {
         Embree::build_named(geom, params, "embree-p16").map(EmbreeP16)

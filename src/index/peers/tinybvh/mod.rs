@@ -86,6 +86,8 @@ impl Drop for TinyBvh8 {
 
 impl Index for TinyBvh8 {
     type Params = TinyBvhParams;
+    /// tinybvh allocates with C++ `new`, unseen by the heap meter: its peak is not measured.
+    const FOREIGN_HEAP: bool = true;
 
     fn build<G: Geometry>(geom: &G, _: &TinyBvhParams) -> Result<Self, BuildError> {
         let name = "tinybvh-bvh8";
