@@ -101,6 +101,21 @@ pub fn peak_during<T>(f: impl FnOnce() -> T) -> (T, usize) {
     (out, peak.saturating_sub(start))
 }
 
+/// `bytes` as a person reads it: `1.5 GiB`, `12.0 MiB`, `900 B` (1024-based).
+pub fn human(bytes: u64) -> String {
+    const UNITS: [&str; 5] = ["KiB", "MiB", "GiB", "TiB", "PiB"];
+    if bytes < 1024 {
+        return format!("{bytes} B");
+    }
+    let mut v = bytes as f64 / 1024.0;
+    let mut unit = 0;
+    while v >= 1024.0 && unit + 1 < UNITS.len() {
+        v /= 1024.0;
+        unit += 1;
+    }
+    format!("{v:.1} {}", UNITS[unit])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,8 +1,9 @@
 //! `accelbench info`: what a scene holds, and with `--indices` what building each index on it
-//! takes (time, resident memory and the build's peak memory).
+//! takes (time, resident memory, the build's peak memory and its estimate).
 
 use crate::geometry::TriangleKernelKind;
-use crate::index::{IndexSpec, build_index};
+use crate::harness::memory::{Budget, parse_bytes};
+use crate::index::{BuildError, IndexSpec, build_index, estimated_build_bytes};
 use crate::scene::{Scene, load_scene};
 use anyhow::Context;
 
@@ -19,6 +20,11 @@ pub struct InfoArgs {
     /// Triangle kernel the indices of `--indices` use.
     #[arg(long, default_value = "exact", value_parser = super::kernel_arg::parse_kernel)]
     kernel: TriangleKernelKind,
+    /// The memory the builds of `--indices` may take (`512M`, `4G`; 1024-based): an index
+    /// whose estimate would not fit, or that outgrows it while building, is listed as skipped
+    /// [default: 80% of the available memory].
+    #[arg(long, value_parser = parse_bytes)]
+    memory_budget: Option<u64>,
 }
 
 pub fn run(a: InfoArgs) -> anyhow::Result<()> {
@@ -57,34 +63,45 @@ pub fn run(a: InfoArgs) -> anyhow::Result<()> {
         None => println!("camera:      none (the protocol camera is used)"),
     }
     if let Some(list) = &a.indices {
+        if let Some(b) = Budget::of(a.memory_budget) {
+            b.hold_builds();
+        }
         builds(&scene, list, a.kernel)?;
     }
     Ok(())
 }
 
 /// Builds each index of `list` on `scene` in turn (each dropped before the next) and prints a
-/// table of its build time and its memory in bytes: resident after the build and the heap's
-/// high-water mark during it (`-` where not measured: a C++ peer's own allocator).
+/// table of its build time and its memory in bytes: resident after the build, the heap's
+/// high-water mark during it (`-` where not measured: a C++ peer's own allocator) and the
+/// estimate of that mark the memory budget is checked against (`-` where there is none). An
+/// index the budget refuses gets a `skipped:` line instead.
 fn builds(scene: &Scene, list: &str, kernel: TriangleKernelKind) -> anyhow::Result<()> {
     let geom = scene.geometry();
     println!(
-        "{:<24} {:>10} {:>14} {:>14}",
-        "index", "build ms", "resident B", "peak build B"
+        "{:<24} {:>10} {:>14} {:>14} {:>14}",
+        "index", "build ms", "resident B", "peak build B", "estimate B"
     );
+    let bytes = |b: Option<usize>| b.map_or_else(|| "-".to_owned(), |b| b.to_string());
     for name in super::suite_args::split_list(list) {
         let spec: IndexSpec = name.parse().with_context(|| format!("index '{name}'"))?;
-        let index = build_index(&spec, &geom, kernel)
-            .with_context(|| format!("building index '{spec}'"))?;
+        let estimate = estimated_build_bytes(&spec, geom.len())?;
+        let index = match build_index(&spec, &geom, kernel) {
+            Ok(index) => index,
+            Err(e @ BuildError::OverBudget { .. }) => {
+                println!("{:<24} skipped: {e}", spec.to_string());
+                continue;
+            }
+            Err(e) => return Err(e).with_context(|| format!("building index '{spec}'")),
+        };
         let info = index.info();
-        let peak = info
-            .peak_build_bytes
-            .map_or_else(|| "-".to_owned(), |b| b.to_string());
         println!(
-            "{:<24} {:>10.1} {:>14} {:>14}",
+            "{:<24} {:>10.1} {:>14} {:>14} {:>14}",
             spec.to_string(),
             info.build_time.as_secs_f64() * 1e3,
             info.memory_bytes,
-            peak
+            bytes(info.peak_build_bytes),
+            bytes(estimate)
         );
     }
     Ok(())

@@ -97,6 +97,10 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_or_help(&e),
     };
+    // Every build is held to the default budget; `--memory-budget` replaces it.
+    if let Some(b) = crate::harness::memory::Budget::of(None) {
+        b.hold_builds();
+    }
     let result = match cli.command {
         Command::Run(a) => run::run(a),
         Command::Animate(a) => animate::run(a),

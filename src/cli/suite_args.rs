@@ -60,8 +60,10 @@ pub struct SuiteArgs {
     /// Shorthand: add `packets4` or `packets8` to `--modes`.
     #[arg(long, value_parser = parse_packet_size)]
     pub packets: Option<usize>,
-    /// The memory the ray sets may take (`512M`, `4G`; 1024-based): a run whose estimate is
-    /// over it is refused before it allocates [default: 80% of the available memory].
+    /// The memory the run may take (`512M`, `4G`; 1024-based): a run whose ray sets would not
+    /// fit is refused before it allocates, and an index whose build would not fit (its
+    /// estimate, or its growth while building) is skipped [default: 80% of the available
+    /// memory].
     #[arg(long, value_parser = crate::harness::memory::parse_bytes)]
     pub memory_budget: Option<u64>,
 }
@@ -198,10 +200,15 @@ impl SuiteArgs {
     }
 
     /// Refuses, with one message, a run whose ray sets would take more than `--memory-budget`
-    /// ([`crate::harness::memory::suite_need`]), before any is made.
+    /// ([`crate::harness::memory::suite_need`]), before any is made, and holds the index builds
+    /// to that budget (an index that would not fit is skipped).
     pub fn check_memory(&self, scenes: &[Scene], cfg: &SuiteConfig) -> anyhow::Result<()> {
         use crate::harness::memory::{Budget, suite_need};
-        match (Budget::of(self.memory_budget), suite_need(scenes, cfg)) {
+        let budget = Budget::of(self.memory_budget);
+        if let Some(b) = &budget {
+            b.hold_builds();
+        }
+        match (budget, suite_need(scenes, cfg)) {
             (Some(budget), Some(need)) => budget.check(&need),
             _ => Ok(()),
         }

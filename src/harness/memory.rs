@@ -13,6 +13,8 @@ use crate::index::Counters;
 use crate::scene::Scene;
 use std::mem::size_of;
 
+pub use crate::heap_meter::human;
+
 /// What a command is about to allocate: `bytes` for `what`, lowered by the option `lower`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Need {
@@ -54,6 +56,12 @@ impl Budget {
         })
     }
 
+    /// Holds every later index build of the process to this budget
+    /// ([`crate::index::build_budget`]).
+    pub fn hold_builds(&self) {
+        crate::index::build_budget::set_build_budget(self.bytes, &self.source);
+    }
+
     /// Fails with one message (what, how much, the budget, what to lower) when `need` is over.
     pub fn check(&self, need: &Need) -> anyhow::Result<()> {
         anyhow::ensure!(
@@ -81,21 +89,6 @@ fn meminfo_available(text: &str) -> Option<u64> {
     let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     kb.checked_mul(1024)
-}
-
-/// `bytes` as a person reads it: `1.5 GiB`, `12.0 MiB`, `900 B` (1024-based).
-pub fn human(bytes: u64) -> String {
-    const UNITS: [&str; 5] = ["KiB", "MiB", "GiB", "TiB", "PiB"];
-    if bytes < 1024 {
-        return format!("{bytes} B");
-    }
-    let mut v = bytes as f64 / 1024.0;
-    let mut unit = 0;
-    while v >= 1024.0 && unit + 1 < UNITS.len() {
-        v /= 1024.0;
-        unit += 1;
-    }
-    format!("{v:.1} {}", UNITS[unit])
 }
 
 /// Parses a `--memory-budget`: a number of bytes with an optional 1024-based unit, `K`, `M`,

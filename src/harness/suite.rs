@@ -120,6 +120,9 @@ fn run_scene(
             Ok(Err(BuildError::Unsupported { reason, .. })) => {
                 res.note(scene, what, format!("skipped: {reason}"))
             }
+            Ok(Err(e @ BuildError::OverBudget { .. })) => {
+                res.note(scene, what, format!("skipped: {e}"))
+            }
             Ok(Err(e)) => res.fail(scene, &spec.name, what, format!("build failed: {e}")),
             Err(p) => res.fail(scene, &spec.name, what, format!("failed: {p} (building)")),
         }

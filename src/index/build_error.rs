@@ -17,4 +17,9 @@ pub enum BuildError {
     /// the suite skips it with this reason instead of failing.
     #[error("{index} skipped: {reason}")]
     Unsupported { index: String, reason: String },
+    /// The build would not fit the memory budget, or outgrew it while building
+    /// ([`crate::index::build_budget`]): the suite skips the index with this message, which
+    /// says how much, the budget and what to lower.
+    #[error("{message}")]
+    OverBudget { index: String, message: String },
 }

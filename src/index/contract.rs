@@ -33,6 +33,18 @@ pub trait Index: Sized + Send + Sync + 'static {
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;
 
+    /// An estimate, in bytes, of the heap the build over `prims` primitives holds at its peak
+    /// with `params` (the build's own allocations, not the scene's), or `None` where there is
+    /// none. [`crate::index::build_index_on`] refuses a build whose estimate would not fit the
+    /// memory budget ([`crate::index::build_budget`]). The estimates come from the peaks `info
+    /// --indices` measures on the generated soup and icosphere and on the bunny, with a margin,
+    /// and `tests/it/cli.rs` checks them against those peaks; structures that scenes of thin,
+    /// long primitives make larger than that check the budget while they build too.
+    fn estimated_build_bytes(prims: usize, params: &Self::Params) -> Option<usize> {
+        let _ = (prims, params);
+        None
+    }
+
     /// Whether the index allocates outside Rust's global allocator (a C or C++ library):
     /// then [`crate::heap_meter`] cannot see its build, and [`Index::info`] gives
     /// `peak_build_bytes` itself, or `None` where nothing measures it.

@@ -6,12 +6,13 @@
 //! runs, [`Counters`] for counting.
 //!
 //! The folder by kind: the trait and its types here (`contract`, `build_error`, `index_info`,
-//! `stats`); the tracing machinery in [`trace`]; the kits the structures share in [`kit`]; one
+//! `stats`, and `build_budget`, the memory budget builds are held to); the tracing machinery in [`trace`]; the kits the structures share in [`kit`]; one
 //! folder per structure (`brute`, `bvh`, `wbvh`, `grid`, `grid2`, `octree`, `kdtree`, `bsp`);
 //! the outside libraries in [`peers`]; the list of them all in [`registry`].
 
 pub mod brute;
 pub mod bsp;
+pub mod build_budget;
 mod build_error;
 pub mod bvh;
 mod contract;
@@ -38,7 +39,10 @@ pub use index_info::IndexInfo;
 pub use kdtree::KdTree;
 pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};
 pub use peers::{ObvhsBvh2, ObvhsCwBvh};
-pub use registry::{IndexSpec, Kind, build_index, index_names, is_peer, parse_params, peer_names};
+pub use registry::{
+    IndexSpec, Kind, build_index, estimated_build_bytes, index_names, is_peer, parse_params,
+    peer_names,
+};
 pub use stats::{Counters, NoStats, Stats};
 pub use trace::{
     BatchIndex, BoundIndex, MAX_PACKET, ModeFamily, TraceIndex, TraceMode, build_index_on,

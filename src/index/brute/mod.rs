@@ -1,6 +1,7 @@
 //! Brute force: test every primitive. The reference every other index must match.
 
 use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::index::build_budget::per_primitive;
 use crate::index::kit::{prim_test, ray_queries};
 use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
@@ -46,6 +47,11 @@ impl Index for BruteForce {
     }
 
     ray_queries!(closest, any, |index| index);
+
+    /// Nothing per primitive: brute force stores only the count.
+    fn estimated_build_bytes(prims: usize, _: &BruteParams) -> Option<usize> {
+        per_primitive(prims, 0)
+    }
 
     fn info(&self) -> IndexInfo {
         IndexInfo {

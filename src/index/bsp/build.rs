@@ -24,6 +24,7 @@ use crate::geometry::Aabb;
 use crate::geometry::clip::box_halfspace_bounds;
 use crate::geometry::polyhedron::ConvexPolyhedron;
 use crate::index::BuildError;
+use crate::index::build_budget::ensure_within;
 use crate::index::kit::near_far::sweep::{Ref, Weights, best_axis_split};
 use crate::index::kit::near_far::{Built, SahParams};
 use crate::scene::Geometry;
@@ -124,6 +125,7 @@ impl<G: Geometry> Builder<'_, G> {
         if at as u64 > MAX_LINK as u64 {
             return Err(too_big());
         }
+        ensure_within("bsp", 0, "raise leaf_size or lower max_depth")?;
         let sah = &self.limits.sah;
         let plane = if refs.len() as u32 <= sah.leaf_size || depth >= sah.max_depth {
             None

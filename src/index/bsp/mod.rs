@@ -104,6 +104,8 @@ impl BspParams {
 
 impl Partition for BspNode {
     const NAME: &'static str = "bsp";
+    /// About 300 B measured.
+    const BUILD_BYTES_PER_PRIM: usize = 330;
     type Params = BspParams;
 
     fn build<G: Geometry>(geom: &G, params: &BspParams, root: Aabb, pad: f32) -> BuildResult<Self> {

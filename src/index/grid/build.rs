@@ -3,6 +3,8 @@
 //! compressed rows (one offset per cell into one id array).
 
 use super::layout::Layout;
+use crate::index::BuildError;
+use crate::index::build_budget::ensure_within;
 use crate::index::kit::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use rayon::prelude::*;
@@ -10,6 +12,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Most primitive references a grid may store (128M ids, 512 MiB).
 pub const MAX_REFS: usize = 1 << 27;
+
+/// What makes a grid smaller, for the budget's refusal.
+const LOWER: &str = "lower the resolution or lambda";
 
 /// Primitives per parallel work item.
 const CHUNK: u32 = 1024;
@@ -33,11 +38,17 @@ impl Cells {
     }
 }
 
-/// Fills the cells of `layout` with `geom`'s primitives, or explains why the grid would be too
-/// large (more than [`MAX_REFS`] references).
-pub fn fill_cells<G: Geometry>(geom: &G, layout: &Layout) -> Result<Cells, String> {
+/// Fills the cells of `layout` with `geom`'s primitives for the grid `index` (its name, for
+/// errors), or explains why the grid would be too large (more than [`MAX_REFS`] references, or
+/// over the memory budget: the references' count depends on how many cells each primitive
+/// spans, so the fill checks the budget as it goes).
+pub fn fill_cells<G: Geometry>(
+    geom: &G,
+    layout: &Layout,
+    index: &str,
+) -> Result<Cells, BuildError> {
     let all: Vec<u32> = (0..geom.len() as u32).collect();
-    fill_cells_with(geom, layout, &all)
+    fill_cells_with(geom, layout, &all, index)
 }
 
 /// Fills the cells of `layout` with the primitives `ids` (ascending), as [`fill_cells`] does
@@ -46,19 +57,22 @@ pub fn fill_cells_with<G: Geometry>(
     geom: &G,
     layout: &Layout,
     ids: &[u32],
-) -> Result<Cells, String> {
+    index: &str,
+) -> Result<Cells, BuildError> {
     let n = ids.len() as u32;
     let total = AtomicUsize::new(0);
-    let too_many = || {
-        format!(
+    let too_many = || BuildError::Failed {
+        index: index.to_owned(),
+        message: format!(
             "more than {MAX_REFS} primitive references (primitives spanning many cells): \
              lower the resolution or lambda"
-        )
+        ),
     };
     // (cell, prim) pairs per chunk, chunks in primitive order.
     let parts = (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|chunk| {
+            ensure_within(index, 0, LOWER)?;
             let mut pairs: Vec<(u32, u32)> = Vec::new();
             for &prim in &ids[(chunk * CHUNK) as usize..((chunk + 1) * CHUNK).min(n) as usize] {
                 let before = pairs.len();
@@ -73,9 +87,12 @@ pub fn fill_cells_with<G: Geometry>(
             }
             Ok(pairs)
         })
-        .collect::<Result<Vec<_>, String>>()?;
-    // Counting sort by cell; stable, so ids stay ascending within a cell.
+        .collect::<Result<Vec<_>, BuildError>>()?;
+    // Counting sort by cell; stable, so ids stay ascending within a cell. Its offsets (twice)
+    // and ids are made while the pairs are still held.
     let cells = layout.cell_count();
+    let refs: usize = parts.iter().map(Vec::len).sum();
+    ensure_within(index, (2 * (cells + 1) + refs) * size_of::<u32>(), LOWER)?;
     let mut offsets = vec![0u32; cells + 1];
     for &(c, _) in parts.iter().flatten() {
         offsets[c as usize + 1] += 1;
@@ -138,7 +155,7 @@ mod tests {
         let corner = Triangle::new(Vec3A::ZERO, Vec3A::X * 0.1, Vec3A::splat(4.0));
         let g = Triangles::<Watertight>::new(vec![tri, corner].into());
         let layout = Layout::new(Aabb::new(Vec3A::ZERO, Vec3A::splat(4.0)), [4, 4, 1]);
-        let cells = fill_cells(&g, &layout).unwrap();
+        let cells = fill_cells(&g, &layout, "grid").unwrap();
         assert_eq!(cells.offsets.len(), 17);
         let holding: Vec<usize> = (0..16).filter(|&c| cells.of(c).contains(&0)).collect();
         // The diagonal cells and their edge/corner neighbours touched at the corners, never the

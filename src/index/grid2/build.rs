@@ -2,6 +2,7 @@
 //! then, in parallel, each non-empty top cell's own grid sized to its contents and filled with
 //! that cell's primitives only. All inner cells share one compressed-row array.
 
+use crate::index::BuildError;
 use crate::index::grid::{
     Cells, Layout, MAX_REFS, fill_cells, fill_cells_with, heuristic_resolution,
 };
@@ -50,12 +51,12 @@ pub fn build_levels<G: Geometry>(
     bounds: crate::geometry::Aabb,
     top_lambda: f32,
     lambda: f32,
-) -> Result<Levels, String> {
+) -> Result<Levels, BuildError> {
     let top = Layout::new(
         bounds,
         heuristic_resolution(bounds.extent(), geom.len(), top_lambda),
     );
-    let top_fill = fill_cells(geom, &top)?;
+    let top_fill = fill_cells(geom, &top, "grid2")?;
     let filled: Vec<usize> = (0..top.cell_count())
         .filter(|&c| !top_fill.of(c).is_empty())
         .collect();
@@ -70,17 +71,21 @@ pub fn build_levels<G: Geometry>(
                 heuristic_resolution(top.cell_box(coords).extent(), ids.len(), lambda)
             };
             let layout = top.inner(coords, res);
-            let cells = fill_cells_with(geom, &layout, ids)?;
+            let cells = fill_cells_with(geom, &layout, ids, "grid2")?;
             Ok((layout, cells))
         })
-        .collect::<Result<Vec<_>, String>>()?;
+        .collect::<Result<Vec<_>, BuildError>>()?;
     let cell_total: usize = grids.iter().map(|(l, _)| l.cell_count()).sum();
     let ref_total: usize = grids.iter().map(|(_, c)| c.prims.len()).sum();
     if ref_total > MAX_REFS || cell_total >= u32::MAX as usize {
-        return Err(format!(
-            "{ref_total} primitive references in {cell_total} inner cells: more than the \
-             {MAX_REFS} references (or 2^32 cells) a grid may hold; lower lambda or top_lambda"
-        ));
+        return Err(BuildError::Failed {
+            index: "grid2".into(),
+            message: format!(
+                "{ref_total} primitive references in {cell_total} inner cells: more than the \
+                 {MAX_REFS} references (or 2^32 cells) a grid may hold; lower lambda or \
+                 top_lambda"
+            ),
+        });
     }
     let mut top_cells = vec![NO_INNER; top.cell_count()].into_boxed_slice();
     let mut offsets = Vec::with_capacity(cell_total + 1);

@@ -24,6 +24,7 @@ mod build;
 
 use super::grid::{Dda, Layout, check_lambda, finite_bounds};
 use crate::geometry::Ray;
+use crate::index::build_budget::per_primitive;
 use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_queries};
 use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
@@ -127,13 +128,7 @@ impl Index for Grid2 {
             })?;
         }
         let bounds = finite_bounds(geom, "grid2")?;
-        let levels =
-            build_levels(geom, bounds, params.top_lambda, params.lambda).map_err(|message| {
-                BuildError::Failed {
-                    index: "grid2".into(),
-                    message,
-                }
-            })?;
+        let levels = build_levels(geom, bounds, params.top_lambda, params.lambda)?;
         Ok(Grid2 {
             levels,
             prim_count: geom.len(),
@@ -141,6 +136,12 @@ impl Index for Grid2 {
     }
 
     cell_walk_queries!();
+
+    /// About 70 B per primitive measured (soup, bunny, icosphere), with a margin; long thin
+    /// primitives span more cells, and the fill checks the budget as it goes.
+    fn estimated_build_bytes(prims: usize, _: &Grid2Params) -> Option<usize> {
+        per_primitive(prims, 80)
+    }
 
     fn info(&self) -> IndexInfo {
         let l = &self.levels;

@@ -27,6 +27,7 @@ use super::binned::Bins;
 use super::node::{KdNode, MAX_PAYLOAD};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
+use crate::index::build_budget::ensure_within;
 use crate::index::kit::near_far::sweep::{Event, Ref, Weights, best_split_sorted, push_events};
 use crate::index::kit::near_far::{Built, SahParams};
 use crate::scene::Geometry;
@@ -114,6 +115,9 @@ pub(super) fn root_input<G: Geometry>(geom: &G, pad: f32, binning: Binning) -> I
     }
 }
 
+/// What makes a kd-tree smaller, for the budget's refusal.
+pub(super) const LOWER: &str = "raise leaf_size or lower max_depth";
+
 pub(super) fn too_big(what: &str) -> BuildError {
     BuildError::Failed {
         index: "kdtree".into(),
@@ -169,6 +173,7 @@ impl<'a, G: Geometry> Builder<'a, G> {
         if at as u64 > MAX_PAYLOAD as u64 {
             return Err(too_big("nodes"));
         }
+        ensure_within("kdtree", 0, LOWER)?;
         match self.split(input, n, cell, depth) {
             Split::Leaf(events) => self.leaf(events, depth),
             Split::Node {

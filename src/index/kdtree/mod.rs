@@ -82,6 +82,8 @@ pub type KdTree = NearFarIndex<KdNode>;
 impl Partition for KdNode {
     type Params = KdParams;
     const NAME: &'static str = "kdtree";
+    /// About 145 B measured on 100k and more primitives, 166 on 20k.
+    const BUILD_BYTES_PER_PRIM: usize = 185;
 
     fn build<G: Geometry>(geom: &G, p: &KdParams, root: Aabb, pad: f32) -> BuildResult<Self> {
         let sah = SahParams::validate(

@@ -2,10 +2,11 @@
 //! parallel (`rayon::join`) into separate arrays, joined by shifting their links, so that the
 //! tree is the one the sequential [`Builder::node`] makes (tested node for node).
 
-use super::build::{Binning, Builder, Input, Split, root_input, too_big};
+use super::build::{Binning, Builder, Input, LOWER, Split, root_input, too_big};
 use super::node::{KdNode, MAX_PAYLOAD};
 use crate::geometry::Aabb;
 use crate::index::BuildError;
+use crate::index::build_budget::ensure_within;
 use crate::index::kit::near_far::sweep::MAX_ITEM;
 use crate::index::kit::near_far::{Built, SahParams};
 use crate::scene::Geometry;
@@ -116,6 +117,10 @@ fn join_subtrees(
     if (above_at + above.nodes.len()) as u64 > MAX_PAYLOAD as u64 + 1 {
         return Err(too_big("nodes"));
     }
+    // The joined arrays are made while both parts are still held.
+    let joined = (above_at + above.nodes.len()) * size_of::<KdNode>()
+        + (below.ids.len() + above.ids.len()) * size_of::<u32>();
+    ensure_within("kdtree", joined, LOWER)?;
     if below.ids.len() + above.ids.len() > u32::MAX as usize {
         return Err(too_big("primitive references"));
     }

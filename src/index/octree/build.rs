@@ -7,6 +7,7 @@ use super::tree::{INTERNAL, NO_ROPE, Node, OctreeTree, face, octant_bit};
 use crate::geometry::Aabb;
 use crate::geometry::overlap::OVERLAP_PAD;
 use crate::index::BuildError;
+use crate::index::build_budget::ensure_within;
 use crate::index::kit::huge_pages::huge_page_vec;
 use crate::scene::Geometry;
 use glam::Vec3A;
@@ -189,6 +190,7 @@ impl<G: Geometry> Builder<'_, G> {
             return Ok(());
         };
         let first = self.tree.nodes.len();
+        ensure_within("octree", 0, "raise max_prims or lower max_depth")?;
         if first + children.len() > MAX_NODES {
             return Err(failed(format!(
                 "more than {MAX_NODES} nodes; lower max_depth ({}) or raise max_prims ({})",

@@ -11,6 +11,18 @@ use serde::Deserialize;
 pub(super) type BuildFn =
     fn(&IndexSpec, &SceneGeometry, TriangleKernelKind) -> Result<Box<dyn TraceIndex>, BuildError>;
 
+/// How the registry estimates one of its indices' build peak ([`estimate_dyn`]).
+pub(super) type EstimateFn = fn(&IndexSpec, usize) -> Result<Option<usize>, BuildError>;
+
+/// [`Index::estimated_build_bytes`] of `I` with the parameters of `spec`, over `prims`
+/// primitives.
+pub(super) fn estimate_dyn<I: Index>(
+    spec: &IndexSpec,
+    prims: usize,
+) -> Result<Option<usize>, BuildError> {
+    Ok(I::estimated_build_bytes(prims, &parse_params::<I>(spec)?))
+}
+
 /// Parses the typed parameters of `I` from a spec (unknown keys rejected).
 pub fn parse_params<I: Index>(spec: &IndexSpec) -> Result<I::Params, BuildError> {
     I::Params::deserialize(toml::Value::Table(spec.params.clone())).map_err(|e| {

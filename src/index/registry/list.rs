@@ -1,7 +1,7 @@
 //! The list of every index the suite knows ([`REGISTRY`], in report order) and whose tests each
 //! uses ([`Kind`]), the lookups by name, and building an index from its spec ([`build_index`]).
 
-use super::build::{BuildFn, build_dyn};
+use super::build::{BuildFn, EstimateFn, build_dyn, estimate_dyn};
 use super::spec::{IndexSpec, parse_params_list};
 use crate::geometry::TriangleKernelKind;
 use crate::index::peers::{ObvhsBvh2, ObvhsCwBvh};
@@ -25,6 +25,7 @@ pub enum Kind {
 struct Entry {
     name: &'static str,
     build: BuildFn,
+    estimate: EstimateFn,
     kind: Kind,
 }
 
@@ -32,6 +33,7 @@ const fn entry<I: BatchIndex>(name: &'static str, kind: Kind) -> Entry {
     Entry {
         name,
         build: build_dyn::<I>,
+        estimate: estimate_dyn::<I>,
         kind,
     }
 }
@@ -109,6 +111,12 @@ fn find_entry(name: &str) -> Result<&'static Entry, BuildError> {
         .iter()
         .find(|e| e.name == name)
         .ok_or_else(|| unknown(name))
+}
+
+/// The estimate of the build's peak heap of index `spec` over `prims` primitives
+/// ([`crate::index::Index::estimated_build_bytes`]), `None` where it has none.
+pub fn estimated_build_bytes(spec: &IndexSpec, prims: usize) -> Result<Option<usize>, BuildError> {
+    (find_entry(&spec.name)?.estimate)(spec, prims)
 }
 
 /// Builds the index `spec` over a scene's primitives with the given triangle kernel.

@@ -12,7 +12,8 @@ use crate::index::{BuildError, Counters, Index, IndexInfo, NoStats};
 use crate::scene::{FromScene, Geometry, SceneGeometry};
 use std::time::Instant;
 
-/// Builds index `I` over a concrete geometry (for tests and benches that want static types).
+/// Builds index `I` over a concrete geometry (for tests and benches that want static types),
+/// after checking its estimate against the memory budget ([`crate::index::build_budget`]).
 pub fn build_index_on<I: Index, G: Geometry>(
     name: &str,
     geom: G,
@@ -20,6 +21,9 @@ pub fn build_index_on<I: Index, G: Geometry>(
 ) -> Result<BoundIndex<I, G>, BuildError> {
     if geom.is_empty() {
         return Err(BuildError::EmptyScene);
+    }
+    if let Some(need) = I::estimated_build_bytes(geom.len(), &params) {
+        crate::index::build_budget::ensure_fits(name, geom.len(), need)?;
     }
     let ((index, build_time), peak) = crate::heap_meter::peak_during(|| {
         let start = Instant::now();

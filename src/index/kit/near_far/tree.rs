@@ -5,6 +5,7 @@
 use super::walk::{self, SplitNode};
 use super::{MAX_TREE_DEPTH, default_max_depth, scene_bounds, scene_pad};
 use crate::geometry::{Aabb, Hit, Ray};
+use crate::index::build_budget::per_primitive;
 use crate::index::kit::huge_pages::huge_page_vec;
 use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
@@ -16,6 +17,10 @@ use std::fmt::Debug;
 pub trait Partition: SplitNode {
     /// The index's registry name (for error messages).
     const NAME: &'static str;
+    /// The build's peak heap per primitive for the estimate
+    /// ([`Index::estimated_build_bytes`]), in bytes: on scenes whose primitives are split into
+    /// a few references each (the generated soup and icosphere, the bunny), with a margin.
+    const BUILD_BYTES_PER_PRIM: usize;
     /// Typed build parameters (as [`Index::Params`]).
     type Params: Default + Clone + Debug + Serialize + DeserializeOwned + Send + Sync;
     /// Builds the nodes over all primitives of `geom` in the cell `root` (their bounds), with
@@ -143,6 +148,12 @@ impl<N: Partition> Index for NearFarIndex<N> {
         } else {
             walk::any_hit::<false, _, _, _>(tree, geom, ray, stats)
         }
+    }
+
+    /// [`Partition::BUILD_BYTES_PER_PRIM`] per primitive; the builds check the budget at every
+    /// node too, since primitives split into many references can make them far larger.
+    fn estimated_build_bytes(prims: usize, _: &N::Params) -> Option<usize> {
+        per_primitive(prims, N::BUILD_BYTES_PER_PRIM)
     }
 
     fn info(&self) -> IndexInfo {

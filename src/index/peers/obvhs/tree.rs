@@ -3,6 +3,7 @@
 
 use super::{ObvhsParams, culling_bound, prim_boxes};
 use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::index::build_budget::per_primitive;
 use crate::index::kit::{prim_test, ray_queries};
 use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
@@ -14,6 +15,9 @@ use std::time::Duration;
 pub trait ObvhsTree: Sized + Send + Sync + 'static {
     /// The registry name, for errors.
     const NAME: &'static str;
+    /// The build's peak heap per primitive for the estimate
+    /// ([`Index::estimated_build_bytes`]), in bytes, measured with a margin.
+    const BUILD_BYTES_PER_PRIM: usize;
     /// Builds the tree over the primitives' boxes (scene order) with obvhs's `params`.
     fn build(boxes: &[Aabb], params: BvhBuildParams, time: &mut Duration) -> Self;
     /// obvhs's own walk, with our counting: hands each visited primitive (its scene id) to
@@ -72,6 +76,10 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
     }
 
     ray_queries!(closest, any, |index| &index.0);
+
+    fn estimated_build_bytes(prims: usize, _: &ObvhsParams) -> Option<usize> {
+        per_primitive(prims, T::BUILD_BYTES_PER_PRIM)
+    }
 
     fn info(&self) -> IndexInfo {
         self.0.info()
