@@ -1,9 +1,10 @@
-//! Ctrl-C (SIGINT) during a suite run: the first one asks the run to stop at the next ray set,
-//! so what was measured is written as an `interrupted` report; a second one ends the process at
-//! once (exit 130, the shell's code for SIGINT).
+//! Ctrl-C (SIGINT) during a suite run: the first one asks the run to stop at the next index's
+//! counting pass or the next timed pass, so what was measured (the ray sets finished before) is
+//! written as an `interrupted` report; a second one ends the process at once (exit 130, the
+//! shell's code for SIGINT).
 //!
 //! The flag is process-wide: only the handler [`stop_on_sigint`] installs sets it, and the suite
-//! reads it between ray sets ([`requested`]), never inside a timed pass.
+//! reads it between ray sets and between passes ([`requested`]), never inside a timed pass.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, LazyLock};

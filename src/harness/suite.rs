@@ -15,8 +15,9 @@
 //! ([`super::contain`]), becomes a note on that contender (`failed: panic at ...`), counted in
 //! [`SuiteResult::failure_total`] when it is ours, and the run goes on without it.
 //!
-//! A SIGINT ([`super::interrupt`]) stops the run before the next ray set (or scene): the result
-//! then holds the sets finished so far and says [`SuiteResult::interrupted`].
+//! A SIGINT ([`super::interrupt`]) stops the run at the next index's counting pass or timed
+//! pass (or ray set, or scene): the result then holds the sets finished so far (the set in
+//! progress gives no rows) and says [`SuiteResult::interrupted`].
 
 use super::contain::contained;
 use super::interrupt;

@@ -3,6 +3,7 @@
 //! all of them, interleaved ([`timed_passes`]), and the result rows.
 
 use super::contain::contained;
+use super::interrupt;
 use super::peer_check::{PeerCounts, classify};
 use super::suite_config::{Pools, SuiteConfig};
 use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
@@ -183,7 +184,9 @@ fn brute_over_budget(
 /// counted and verified in every mode of `cfg.modes` that applies to the set and to the index
 /// ([`TraceIndex::traces_in`]); then all of them are timed together ([`timed_passes`]). An
 /// index that panics in a counting or timed pass gets a failure note instead of rows, and is
-/// returned.
+/// returned. A SIGINT ([`interrupt::requested`]) stops the set before the next index's
+/// counting pass or the next timed pass, and the set gives no rows (its timings would be
+/// incomplete) and marks the result [`SuiteResult::interrupted`], which ends the run.
 pub(super) fn run_set<'a>(
     mut run: SetRun<'a>,
     built: &'a [Box<dyn TraceIndex>],
@@ -195,6 +198,10 @@ pub(super) fn run_set<'a>(
     let mut entries = Vec::new();
     let mut failed = Vec::new();
     for index in built {
+        if interrupt::requested() {
+            res.interrupted = true;
+            return failed;
+        }
         let index = index.as_ref();
         progress.set_message(format!(
             "{}: {} {}",
@@ -233,6 +240,10 @@ pub(super) fn run_set<'a>(
     }
     progress.set_message(format!("{}: {} timing", run.scene.name, run.set.name()));
     let timings = timed_passes(&run, &mut entries, cfg, pools, res);
+    if interrupt::requested() {
+        res.interrupted = true;
+        return failed;
+    }
     for (entry, timings) in entries.into_iter().zip(timings) {
         if let Some(p) = entry.failed {
             note_failed(&run, entry.index, &format!("{p} (timed pass)"), res);
@@ -355,6 +366,9 @@ fn timed_passes(
         let mut samples = vec![Vec::with_capacity(repeats); entries.len()];
         for pass in 1..=repeats {
             for (entry, samples) in entries.iter_mut().zip(&mut samples) {
+                if interrupt::requested() {
+                    return timings;
+                }
                 if entry.failed.is_some() {
                     continue;
                 }

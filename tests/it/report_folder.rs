@@ -147,3 +147,50 @@ fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
     let (out, merged) = (out.to_str().unwrap(), merged.to_str().unwrap());
     accelbench_fails(&["merge", out, "--out", merged], &["unfinished run"]);
 }
+
+/// SIGINT in the middle of a ray set's timed passes (a thousand repeats in two modes, most of
+/// a minute): the run stops at the next pass instead of finishing the set, leaves the
+/// unfinished set out and exits 130 with the status `interrupted`.
+#[cfg(unix)]
+#[test]
+fn an_interrupt_inside_a_ray_set_stops_at_the_next_pass() {
+    use std::time::{Duration, Instant};
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(
+            Suite::run("soup:n=100000", "bvh", "primary", &out)
+                .with("--repeats", "1000")
+                .args(),
+        )
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The build, brute force's reference and the counting pass take well under this; the
+    // 2,000 timed passes, about 20 ms each, take most of a minute.
+    std::thread::sleep(Duration::from_secs(4));
+    // SAFETY: signals a child process this test started and has not reaped.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let signalled = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if signalled.elapsed() > Duration::from_secs(20) {
+            child.kill().unwrap();
+            panic!("the run went on for 20 s after the SIGINT");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert_eq!(status_of(&out), "interrupted");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert!(
+        !csv.contains("soup"),
+        "the unfinished set gave rows:\n{csv}"
+    );
+}
