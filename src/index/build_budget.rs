@@ -12,8 +12,8 @@
 //!   outgrows its estimate is refused instead of being killed by the kernel.
 //!
 //! Both refusals are [`BuildError::OverBudget`], which the suite reports as a skipped index.
-//! The heap counted is Rust's ([`crate::heap_meter`]): indices of C and C++ libraries are
-//! checked before their build only.
+//! The heap counted is Rust's ([`crate::heap_meter`]), and Embree's through its memory monitor
+//! ([`room_for`]); tinybvh's C++ allocations are not seen.
 
 use super::BuildError;
 use crate::heap_meter::{held_bytes, human};
@@ -75,21 +75,36 @@ pub fn ensure_fits(index: &str, prims: usize, need: usize) -> Result<(), BuildEr
 /// the budget, so builders may call it at every node.
 #[inline]
 pub fn ensure_within(index: &str, allocating: usize, lower: &str) -> Result<(), BuildError> {
-    let held = held_bytes().saturating_add(allocating);
-    if held <= LIMIT.load(Ordering::Relaxed) {
-        return Ok(());
+    match room_for(allocating) {
+        true => Ok(()),
+        false => Err(stopped(
+            index,
+            held_bytes().saturating_add(allocating),
+            lower,
+        )),
     }
+}
+
+/// Whether `allocating` more bytes beside the heap held now stay within the budget (always,
+/// when none is set). For a library's own allocator (Embree's memory monitor) as for ours.
+#[inline]
+pub fn room_for(allocating: usize) -> bool {
+    held_bytes().saturating_add(allocating) <= LIMIT.load(Ordering::Relaxed)
+}
+
+/// The refusal of a build of `index` stopped when its heap would have reached `reached` bytes.
+pub fn stopped(index: &str, reached: usize, lower: &str) -> BuildError {
     let (limit, source) = budget().unwrap_or_default();
-    Err(BuildError::OverBudget {
+    BuildError::OverBudget {
         index: index.to_owned(),
         message: format!(
             "{index} stopped building when its heap would reach {}, over the memory budget of {} \
              ({source}): this scene makes it larger than its estimate; {lower}, use a smaller \
              scene, or raise --memory-budget",
-            human(held as u64),
+            human(reached as u64),
             human(limit as u64),
         ),
-    })
+    }
 }
 
 /// Heap every build may hold beyond its per-primitive share (vectors' first blocks, rayon's

@@ -67,6 +67,10 @@ impl Index for EmbreeP16 {
         Embree::build_named(geom, params, "embree-p16").map(EmbreeP16)
     }
 
+    fn estimated_build_bytes(prims: usize, params: &EmbreeParams) -> Option<usize> {
+        Embree::estimated_build_bytes(prims, params)
+    }
+
     // Single rays (the last-hit cache) go to the robust scene's `rtcIntersect1`/`rtcOccluded1`.
     ray_queries!(Index::closest_hit, Index::any_hit, |index| &index.0);
 
