@@ -262,7 +262,7 @@ pub fn run(mut a: RunArgs) -> anyhow::Result<()> {
     if res.peer_mismatch_total > 0 {
         eprintln!(
             "note: peers ({}) differed from brute force on {} results (see mismatches.txt)",
-            crate::index::peer_names().join(", "),
+            crate::report::differing_peers(&res.rows).join(", "),
             res.peer_mismatch_total
         );
     }

@@ -71,10 +71,13 @@ fn truth(scene: &Scene, prim: u32, ray: &Ray) -> Reference {
 }
 
 /// The exact `t` at which `ray` meets `hit.prim` inside `[t_min, t_max]`, `None` when it does
-/// not; the reported `t` when the reference cannot decide.
+/// not or when that `t` rounds past `f32`'s range (the hit contract: a hit has a finite `t`, so
+/// a distance beyond `f32::MAX` is a miss); the reported `t` when the reference cannot decide.
 fn real_t(scene: &Scene, ray: &Ray, hit: &Hit) -> Option<f64> {
     match truth(scene, hit.prim, ray) {
-        Reference::Hit(t) => (t >= ray.t_min as f64 && t <= ray.t_max as f64).then_some(t),
+        Reference::Hit(t) => {
+            (t >= ray.t_min as f64 && t <= ray.t_max as f64 && (t as f32).is_finite()).then_some(t)
+        }
         Reference::Miss => None,
         Reference::Unverifiable => Some(hit.t as f64),
     }
@@ -87,7 +90,9 @@ fn really_occluded(scene: &Scene, ray: &Ray) -> bool {
 
 /// Judges a peer's result `got` where brute force returned `expected` (they differ). For
 /// [`Query::Any`] a `Some` means "occluded"; deciding it scans every primitive of the scene with
-/// the reference, which is affordable because disagreements are rare.
+/// the reference, which is affordable because disagreements are rare. A closest hit whose `t`
+/// is not a finite number (`embree-fast` returns NaN on some rays with tiny directions) is
+/// wrong.
 pub fn classify(
     scene: &Scene,
     ray: &Ray,
@@ -101,6 +106,9 @@ pub fn classify(
         } else {
             Verdict::Wrong
         };
+    }
+    if got.is_some_and(|g| !g.t.is_finite()) {
+        return Verdict::Wrong;
     }
     if let (Some(e), Some(g)) = (expected, got)
         && near(e.t as f64, g.t as f64)
@@ -161,6 +169,19 @@ mod tests {
         assert_eq!(c(None, hit(0, 1.0)), Verdict::PeerRight);
         assert_eq!(c(hit(1, 2.0), hit(0, 1.0)), Verdict::PeerRight);
         assert_eq!(c(hit(0, 1.0), hit(1, 0.5)), Verdict::Wrong);
+    }
+
+    /// A hit needs a finite `t`: a NaN distance is wrong, and so is a hit whose exact distance
+    /// (1e40 along a direction of length 1e-40) is beyond `f32`, where brute force misses.
+    #[test]
+    fn a_hit_without_a_finite_t_is_wrong() {
+        let (s, r) = setup();
+        let c = |r: &Ray, e, g| classify(&s, r, Query::Closest, e, g);
+        assert_eq!(c(&r, hit(0, 1.0), hit(0, f32::NAN)), Verdict::Wrong);
+        assert_eq!(c(&r, None, hit(1, f32::NAN)), Verdict::Wrong);
+        let far = Ray::infinite(Vec3::ZERO, Vec3::new(0.0, 0.0, 1e-40)).unwrap();
+        assert_eq!(c(&far, None, hit(0, f32::MAX)), Verdict::Wrong);
+        assert_eq!(c(&far, None, hit(0, f32::INFINITY)), Verdict::Wrong);
     }
 
     #[test]

@@ -184,8 +184,8 @@ fn brute_over_budget(
 /// counted and verified in every mode of `cfg.modes` that applies to the set and to the index
 /// ([`TraceIndex::traces_in`]); then all of them are timed together ([`timed_passes`]). An
 /// index that panics in a counting or timed pass gets a failure note instead of rows, and is
-/// returned. A SIGINT ([`interrupt::requested`]) stops the set before the next index's
-/// counting pass or the next timed pass, and the set gives no rows (its timings would be
+/// returned. A SIGINT ([`interrupt::requested`]) stops the set within a slice of a counting
+/// pass (or of brute force's reference) or before the next timed pass, and the set gives no rows (its timings would be
 /// incomplete) and marks the result [`SuiteResult::interrupted`], which ends the run.
 pub(super) fn run_set<'a>(
     mut run: SetRun<'a>,
@@ -212,6 +212,14 @@ pub(super) fn run_set<'a>(
         if brute_over_budget(&run, index, cfg, res) {
             progress.inc(1);
             continue;
+        }
+        if let Some((n, why)) = index.refused(run.rays) {
+            let what = format!("index {} on {}", index.name(), run.set.name());
+            let reason = format!(
+                "{n} of {} rays not traced (answered as misses, judged like any result): {why}",
+                run.rays.len()
+            );
+            res.note(run.scene, what, reason);
         }
         let first = entries.len();
         // A panic can only come from the index's trace, before that mode's verification: what
@@ -324,7 +332,10 @@ fn count_mode<'a>(
     };
     // A peer's every mode is judged against brute force (its wrong results are classified per
     // row, so a wrong mode of a peer never wins); ours are held to their first mode ray by ray.
+    // After a SIGINT the pass (or brute force's reference) may be cut short: nothing is judged,
+    // and `run_set` gives the set no rows.
     match reference {
+        _ if interrupt::requested() => {}
         Some((m, r)) if !is_peer(index.name()) => {
             tally.record(&m.label(), compare_closest(run.rays, r, &hits), res)
         }

@@ -124,7 +124,14 @@ pub fn counting_pass(
     counting_pass_in(index, query, TraceMode::Single, rays)
 }
 
-/// [`counting_pass`] with the batch traced in `mode`.
+/// Rays per slice of a counting pass: between slices the pass checks for a SIGINT.
+const COUNTING_SLICE: usize = 1 << 14;
+
+/// [`counting_pass`] with the batch traced in `mode`, in slices of [`COUNTING_SLICE`] rays. A
+/// SIGINT ([`super::interrupt::requested`]) stops it before the next slice, leaving the rest of
+/// the answers unset: a caller that installed the handler checks it after the pass and drops
+/// what the pass returned. (The timed passes are not cut: each is one call, so that nothing
+/// but tracing is timed.)
 pub fn counting_pass_in(
     index: &dyn TraceIndex,
     query: Query,
@@ -132,15 +139,29 @@ pub fn counting_pass_in(
     rays: &[Ray],
 ) -> (Vec<Counters>, BatchHits) {
     let mut counters = vec![Counters::default(); rays.len()];
+    let slices = rays
+        .chunks(COUNTING_SLICE)
+        .zip(counters.chunks_mut(COUNTING_SLICE));
+    let stopped = super::interrupt::requested;
     match query {
         Query::Closest => {
             let mut out = vec![None; rays.len()];
-            index.closest_hits_in(mode, rays, &mut out, Some(&mut counters));
+            for ((rays, c), out) in slices.zip(out.chunks_mut(COUNTING_SLICE)) {
+                if stopped() {
+                    break;
+                }
+                index.closest_hits_in(mode, rays, out, Some(c));
+            }
             (counters, out)
         }
         Query::Any => {
             let mut out = vec![false; rays.len()];
-            index.any_hits_in(mode, rays, &mut out, Some(&mut counters));
+            for ((rays, c), out) in slices.zip(out.chunks_mut(COUNTING_SLICE)) {
+                if stopped() {
+                    break;
+                }
+                index.any_hits_in(mode, rays, out, Some(c));
+            }
             (counters, occluded(&out))
         }
     }

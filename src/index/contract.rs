@@ -38,10 +38,19 @@ pub trait Index: Sized + Send + Sync + 'static {
     /// none. [`crate::index::build_index_on`] refuses a build whose estimate would not fit the
     /// memory budget ([`crate::index::build_budget`]). The estimates come from the peaks `info
     /// --indices` measures on the generated soup and icosphere and on the bunny, with a margin,
-    /// and `tests/it/cli.rs` checks them against those peaks; structures that scenes of thin,
+    /// and `tests/it/memory_checks.rs` checks them against those peaks; structures that scenes of thin,
     /// long primitives make larger than that check the budget while they build too.
     fn estimated_build_bytes(prims: usize, params: &Self::Params) -> Option<usize> {
         let _ = (prims, params);
+        None
+    }
+
+    /// Why this index cannot be given `ray`, or `None`: outside libraries have input ranges
+    /// (Embree takes coordinates up to ±1.844e18); every index of ours takes every valid ray.
+    /// The index answers a refused ray as a miss without handing it on, and the suite and
+    /// `trace` say how many rays were refused and why ([`crate::index::TraceIndex::refused`]).
+    fn refuses(ray: &Ray) -> Option<&'static str> {
+        let _ = ray;
         None
     }
 

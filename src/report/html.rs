@@ -14,6 +14,7 @@
 use super::ReportError;
 use super::cost_fit::CostFit;
 use super::html_sections::{build_tables, cost_tables, esc, pictures_html, uniq_labels};
+use super::rows::differing_peers;
 use super::run_meta::RunMeta;
 use super::run_notes::RunNotes;
 use super::verdict::Verdict;
@@ -77,7 +78,7 @@ pub fn write_html(
         },
         esc(&meta.status.sentence())
     );
-    s.push_str(&verification_banner(notes));
+    s.push_str(&verification_banner(rows, notes));
     s.push_str(&verdict_matrix(rows, verdicts));
     s.push_str(&cost_tables(rows, fits));
     s.push_str(&build_tables(rows));
@@ -92,7 +93,7 @@ pub fn write_html(
     })
 }
 
-fn verification_banner(notes: &RunNotes) -> String {
+fn verification_banner(rows: &[ResultRow], notes: &RunNotes) -> String {
     let mut s = if notes.mismatch_total == 0 {
         "<p class=\"pass\"><b>Verification passed.</b> Every one of our indices returned brute \
          force's hits bit for bit on the verified rays, and they agreed with each other on every \
@@ -110,7 +111,7 @@ fn verification_banner(notes: &RunNotes) -> String {
             s,
             "<p>Outside peers ({}) differed from brute force on {} results (their own box \
              tests); reported, not a failure.</p>",
-            esc(&crate::index::peer_names().join(", ")),
+            esc(&differing_peers(rows).join(", ")),
             notes.peer_mismatch_total
         );
     }

@@ -27,6 +27,7 @@ pub use chart::{
     BarGroup, Chart, Series, bar_chart, line_chart, scatter_chart, scatter_chart_with_lines,
 };
 pub use csv_out::write_csv;
+pub use rows::differing_peers;
 
 use std::path::PathBuf;
 use thiserror::Error;

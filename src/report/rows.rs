@@ -40,6 +40,21 @@ pub fn index_label<'a>(row: &ResultRow, rows: impl IntoIterator<Item = &'a Resul
     }
 }
 
+/// The peers whose rows differ from brute force on some verified ray, by index name, each
+/// once, in row order: the names the reports' peer notes list.
+pub fn differing_peers(rows: &[ResultRow]) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for row in rows
+        .iter()
+        .filter(|r| r.peer_ties.is_some() && r.mismatches > 0)
+    {
+        if !names.contains(&base_index(row)) {
+            names.push(base_index(row));
+        }
+    }
+    names
+}
+
 /// The index a row traced: its label without the `+MODE` suffix (`bvh8+stream` -> `bvh8`).
 pub(super) fn base_index(row: &ResultRow) -> &str {
     row.index.split('+').next().unwrap_or(&row.index)

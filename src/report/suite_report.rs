@@ -7,7 +7,7 @@
 use super::cost_fit::{CostFit, cost_fits};
 use super::fixed as fmt_f;
 use super::html::write_html;
-use super::rows::{base_index, index_label, scenes, uniq, uniq_threads};
+use super::rows::{base_index, differing_peers, index_label, scenes, uniq, uniq_threads};
 pub use super::run_meta::{RunMeta, RunStatus, run_id_now};
 use super::run_notes::{PictureRef, RunNotes, pictures_markdown};
 use super::suite_plots::write_plots;
@@ -255,7 +255,7 @@ pub fn summary_markdown(
              very-near hits; Embree and tinybvh also test triangles themselves. Reported in the \
              `mismatches` column and `mismatches.txt` (ties and wrong results per set below), \
              not a failure of the run.\n",
-            crate::index::peer_names().join(", "),
+            differing_peers(rows).join(", "),
             notes.peer_mismatch_total
         );
     }

@@ -318,3 +318,86 @@ fn a_scene_with_spheres_skips_the_peers_with_the_reason() {
         assert!(matches!(err, BuildError::Unsupported { .. }), "{err}");
     }
 }
+
+/// Rays outside the C peers' own conventions, all valid rays of ours: `t_max = inf` along
+/// (1, 1, 1) (through the 1e30 boxes tinybvh puts in empty child slots), directions of length
+/// 1e-15 to 1e-45 and 1e30, coordinates beyond Embree's ±1.844e18 and sums that overflow
+/// tinybvh's ray check. Before the shim's guard and Embree's range check, tinybvh segfaulted on
+/// the first two kinds and Embree aborted on the third (its assertion `ray.valid()`), killing
+/// the run. Now every peer answers every ray in every mode, the refused rays are counted with
+/// the reason, and the robust Embree finds the quad along a direction of length 1e-15 at brute
+/// force's `t` (tinybvh misses it: it takes direction components below 1e-12 for zero, and is
+/// counted wrong there).
+#[test]
+fn peers_survive_rays_outside_their_own_conventions() {
+    let p = |x: f32, y: f32| glam::Vec3A::new(x, y, 0.0);
+    let quad = Scene::from_triangles(
+        "quad",
+        vec![
+            accelbench::geometry::Triangle::new(p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)),
+            accelbench::geometry::Triangle::new(p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)),
+        ],
+    );
+    let soup = generators::generate("soup", 1000, 1).unwrap();
+    let origins = [
+        [0.5, 0.5, -2.0],
+        [-100.0, -100.0, -100.0],
+        [0.5, 0.5, 2.0],
+        [5.0, 5.0, -2.0],
+        [3e38, 3e38, 0.0],
+    ];
+    let dirs = [
+        [0.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [2.0, 2.0, 2.0],
+        [1e-3, 1e-3, 1e-3],
+        [0.0, 0.0, 1e-15],
+        [1e-20, 1e-20, 1e-30],
+        [1e-45, 1e-44, 1e-40],
+        [0.0, 0.0, 1e30],
+        [1e25, 1e25, 1e30],
+        [-3e38, -3e38, 1.0],
+        [-1.0, -1.0, -1.0],
+    ];
+    let rays: Vec<Ray> = origins
+        .iter()
+        .flat_map(|o| dirs.iter().map(move |d| (*o, *d)))
+        .map(|(o, d)| Ray::infinite(o.into(), d.into()).unwrap())
+        .collect();
+    let short = Ray::infinite([0.5, 0.5, -2.0].into(), [0.0, 0.0, 1e-15].into()).unwrap();
+    for scene in [&quad, &soup] {
+        let brute = build("brute", scene);
+        let expected = common::closest(brute.as_ref(), &rays);
+        for name in peers() {
+            let index = build(name, scene);
+            for mode in MODES.into_iter().filter(|m| index.traces_in(*m)) {
+                let got = common::closest_in(index.as_ref(), mode, &rays);
+                let what = format!("{name} ({}) on {}", mode.label(), scene.name);
+                let c = judge(&what, scene, &rays, &expected, &got);
+                let mut any = vec![false; rays.len()];
+                index.any_hits_in(mode, &rays, &mut any, None);
+                eprintln!("{what}: {c:?}");
+            }
+            let refused = index.refused(&rays).map_or(0, |(n, _)| n);
+            let expect = match name.starts_with("embree") {
+                // Origins at 3e38 (11 rays) and the other origins' 1e30 and 3e38 directions.
+                true => dirs.len() + 3 * (origins.len() - 1),
+                // The directions (-3e38, -3e38, 1) overflow tinybvh's check at every origin.
+                false => origins.len(),
+            };
+            assert_eq!(refused, expect, "{name} on {}", scene.name);
+        }
+    }
+    let want = build("brute", &quad).closest_hit(&short).unwrap();
+    for name in ["embree", "embree-p16"] {
+        if !peers().contains(&name) {
+            continue;
+        }
+        let got = build(name, &quad).closest_hit(&short);
+        let t = got.map(|h| h.t);
+        assert!(
+            t.is_some_and(|t| ((t - want.t) / want.t).abs() < 1e-6),
+            "{name}: {got:?}, brute force {want:?}"
+        );
+    }
+}

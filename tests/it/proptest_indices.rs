@@ -152,8 +152,15 @@ proptest! {
             let spec: IndexSpec = name
                 .parse()
                 .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
-            let m = verify_against_brute(&spec, &geom, kernel, &rays)
-                .map_err(|e| TestCaseError::fail(format!("{name} ({kernel}): {e}")))?;
+            let m = match verify_against_brute(&spec, &geom, kernel, &rays) {
+                Ok(m) => m,
+                // Embree and tinybvh take triangles only: a scene with spheres skips them.
+                Err(e) if is_peer(&name) => {
+                    eprintln!("peer {name}: {e}");
+                    continue;
+                }
+                Err(e) => return Err(TestCaseError::fail(format!("{name} ({kernel}): {e}"))),
+            };
             if is_peer(&name) {
                 if !m.is_empty() {
                     eprintln!("peer {name}: {} of {} rays mismatch", m.len(), rays.len());

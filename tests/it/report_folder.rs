@@ -148,49 +148,77 @@ fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
     accelbench_fails(&["merge", out, "--out", merged], &["unfinished run"]);
 }
 
+/// Runs `run`, sends it a SIGINT after `wait` and waits at most `within`
+/// for it to end; returns its exit code and standard error.
+#[cfg(unix)]
+fn interrupted(
+    run: Suite,
+    wait: std::time::Duration,
+    within: std::time::Duration,
+) -> (Option<i32>, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(run.args())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(wait);
+    // SAFETY: signals a child process this test started and has not reaped.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let signalled = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if signalled.elapsed() > within {
+            child.kill().unwrap();
+            panic!("the run went on for {within:?} after the SIGINT");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    (status.code(), err)
+}
+
 /// SIGINT in the middle of a ray set's timed passes (a thousand repeats in two modes, most of
 /// a minute): the run stops at the next pass instead of finishing the set, leaves the
 /// unfinished set out and exits 130 with the status `interrupted`.
 #[cfg(unix)]
 #[test]
 fn an_interrupt_inside_a_ray_set_stops_at_the_next_pass() {
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("r");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(
-            Suite::run("soup:n=100000", "bvh", "primary", &out)
-                .with("--repeats", "1000")
-                .args(),
-        )
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // The build, brute force's reference and the counting pass take well under this; the
+    let args = Suite::run("soup:n=100000", "bvh", "primary", &out).with("--repeats", "1000");
+    // The build, brute force's reference and the counting pass take well under 4 s; the
     // 2,000 timed passes, about 20 ms each, take most of a minute.
-    std::thread::sleep(Duration::from_secs(4));
-    // SAFETY: signals a child process this test started and has not reaped.
-    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
-    let signalled = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if signalled.elapsed() > Duration::from_secs(20) {
-            child.kill().unwrap();
-            panic!("the run went on for 20 s after the SIGINT");
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    };
-    let mut err = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
-    assert_eq!(status.code(), Some(130), "{err}");
+    let (code, err) = interrupted(args, Duration::from_secs(4), Duration::from_secs(20));
+    assert_eq!(code, Some(130), "{err}");
     assert_eq!(status_of(&out), "interrupted");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert!(
         !csv.contains("soup"),
         "the unfinished set gave rows:\n{csv}"
     );
+}
+
+/// SIGINT inside one long counting pass: `grid` on 20,000 overlapping slivers traces about
+/// 50,000 rays a second, so its counting pass of a million rays takes about 20 s on one
+/// thread. The pass stops within a slice of 16,384 rays, and the run exits 130 with the set
+/// left out, instead of finishing the pass first.
+#[cfg(unix)]
+#[test]
+fn an_interrupt_inside_a_long_counting_pass_stops_it() {
+    use std::time::Duration;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    let args =
+        Suite::run("slivers:n=20000", "grid", "incoherent", &out).with("--incoherent", "1000000");
+    let (code, err) = interrupted(args, Duration::from_secs(6), Duration::from_secs(8));
+    assert_eq!(code, Some(130), "{err}");
+    assert_eq!(status_of(&out), "interrupted");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert!(!csv.contains("slivers"), "the cut set gave rows:\n{csv}");
 }

@@ -263,6 +263,9 @@ impl TraceIndex for Logged {
     fn has_single(&self) -> bool {
         self.inner.has_single()
     }
+    fn refused(&self, rays: &[Ray]) -> Option<(usize, &'static str)> {
+        self.inner.refused(rays)
+    }
     fn can_refit(&self) -> bool {
         self.inner.can_refit()
     }

@@ -87,6 +87,17 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
     fn has_single(&self) -> bool {
         I::SINGLE
     }
+    fn refused(&self, rays: &[Ray]) -> Option<(usize, &'static str)> {
+        let mut why = None;
+        let count = rays
+            .iter()
+            .filter_map(I::refuses)
+            .inspect(|w| {
+                why.get_or_insert(*w);
+            })
+            .count();
+        why.map(|w| (count, w))
+    }
     fn can_refit(&self) -> bool {
         I::REFIT && self.reframe.is_some()
     }

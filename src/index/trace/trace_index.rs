@@ -29,6 +29,9 @@ pub trait TraceIndex: Send + Sync {
             TraceMode::Packets(_) => true,
         }
     }
+    /// How many of `rays` the index refuses ([`crate::index::Index::refuses`]: it answers them
+    /// as misses without tracing them) and why the first was refused; `None` when it takes all.
+    fn refused(&self, rays: &[Ray]) -> Option<(usize, &'static str)>;
     /// Whether [`TraceIndex::refit`] can follow the scene's frames in place.
     fn can_refit(&self) -> bool;
     /// Moves the index to `frame`, another frame of the scene it was built on (the same

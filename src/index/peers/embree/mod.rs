@@ -161,6 +161,10 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
         per_primitive(prims, EMBREE_BUILD_BYTES_PER_PRIM)
     }
 
+    fn refuses(ray: &Ray) -> Option<&'static str> {
+        rtc_ray::refusal(ray)
+    }
+
     #[inline]
     fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> Option<Hit> {
         let mut slot = MaybeUninit::<RayHit>::uninit();

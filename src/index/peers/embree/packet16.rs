@@ -14,6 +14,7 @@
 //! are not bound by our hit contract: disagreements with brute force are classified like every
 //! peer's (`harness::peer_check`).
 
+use super::rtc_ray::{in_range, refusal};
 use super::{Embree, EmbreeParams};
 use crate::geometry::{Hit, Ray};
 use crate::index::kit::ray_queries;
@@ -44,10 +45,23 @@ impl Valid16 {
 }
 
 /// Writes `rays` (at most 16) into the first lanes of `packet` as Embree rays (`[t_min, t_max]`
-/// as `[tnear, tfar]`, time 0, every mask bit set); lanes past them keep what they held.
+/// as `[tnear, tfar]`, time 0, every mask bit set); lanes past them keep what they held. A ray
+/// out of Embree's range becomes an empty segment at the origin (`tfar` -1 < `tnear` 0), which
+/// Embree skips ([`super::rtc_ray`]).
 #[inline(always)]
 fn set_rays(packet: &mut Ray16, rays: &[Ray]) {
     for (i, r) in rays.iter().enumerate() {
+        if !in_range(r) {
+            packet.org_x[i] = 0.0;
+            packet.org_y[i] = 0.0;
+            packet.org_z[i] = 0.0;
+            packet.tnear[i] = 0.0;
+            packet.dir_x[i] = 1.0;
+            packet.dir_y[i] = 0.0;
+            packet.dir_z[i] = 0.0;
+            packet.tfar[i] = -1.0;
+            continue;
+        }
         packet.org_x[i] = r.origin.x;
         packet.org_y[i] = r.origin.y;
         packet.org_z[i] = r.origin.z;
@@ -69,6 +83,10 @@ impl Index for EmbreeP16 {
 
     fn estimated_build_bytes(prims: usize, params: &EmbreeParams) -> Option<usize> {
         Embree::estimated_build_bytes(prims, params)
+    }
+
+    fn refuses(ray: &Ray) -> Option<&'static str> {
+        refusal(ray)
     }
 
     // Single rays (the last-hit cache) go to the robust scene's `rtcIntersect1`/`rtcOccluded1`.

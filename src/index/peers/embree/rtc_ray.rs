@@ -6,6 +6,10 @@
 //! store of `dir_x, dir_y`, then `dir_z`, then `time`), that stall cost the suite's `embree` 20%
 //! of its speed on primary rays against writing each lane with one store (bunny, 1024 x 1024, one
 //! thread). So every lane here is written with one 16-byte store.
+//!
+//! Embree takes origin and direction coordinates up to ±[`FLT_LARGE`] (its `RayK::valid`,
+//! which its checked builds assert, aborting the process: Debian's is one). A ray past that is
+//! written as [`INACTIVE`], which Embree traces as an empty segment: no hit, not occluded.
 
 use crate::geometry::Ray;
 use embree3::{INVALID_ID, RayHit};
@@ -42,15 +46,44 @@ fn bits(x: u32) -> f32 {
 }
 
 /// Our ray's three `RTCRay` lanes: `[t_min, t_max]` as `[tnear, tfar]`, time 0, every mask bit
-/// set, id and flags 0.
+/// set, id and flags 0; [`INACTIVE`] for a ray out of Embree's range.
 #[inline(always)]
 fn ray_lanes(ray: &Ray) -> RayLanes {
+    if !in_range(ray) {
+        return INACTIVE;
+    }
     [
         ray.origin.extend(ray.t_min),
         ray.dir.extend(0.0),
         Vec4::new(ray.t_max, bits(u32::MAX), 0.0, 0.0),
     ]
 }
+
+/// Embree's `FLT_LARGE` (`common/math/constants.h`): the largest origin or direction
+/// coordinate it takes.
+pub(super) const FLT_LARGE: f32 = 1.844e18;
+
+/// Whether Embree takes `ray` (every origin and direction coordinate within ±[`FLT_LARGE`]).
+#[inline(always)]
+pub(super) fn in_range(ray: &Ray) -> bool {
+    ray.origin.abs().max(ray.dir.abs()).max_element() <= FLT_LARGE
+}
+
+/// Why Embree refuses `ray`, for `Index::refuses`.
+pub(super) fn refusal(ray: &Ray) -> Option<&'static str> {
+    (!in_range(ray)).then_some(
+        "a coordinate of its origin or direction is beyond ±1.844e18, the largest Embree takes \
+         (its checked builds abort on such rays)",
+    )
+}
+
+/// A ray Embree takes and finds nothing on: `tfar < tnear` (a stream's inactive ray), so no
+/// hit, and `tfar` stays -1 (not the -inf that marks an occluded ray).
+const INACTIVE: RayLanes = [
+    Vec4::ZERO,
+    Vec4::new(1.0, 0.0, 0.0, 0.0),
+    Vec4::new(-1.0, f32::from_bits(u32::MAX), 0.0, 0.0),
+];
 
 /// `slot` initialized as Embree's ray for `ray` (see [`ray_lanes`]).
 #[inline(always)]

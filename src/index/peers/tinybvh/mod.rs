@@ -13,10 +13,20 @@
 //! - the build uses tinybvh's own job system when the calling rayon pool has more than one
 //!   thread (and the scene at least 50,000 triangles, tinybvh's `MT_BUILD_THRESHOLD`), and one
 //!   thread otherwise, so a one-thread pool measures a one-thread build;
-//! - no counters: the index is [`IndexInfo::uncounted`].
+//! - no counters: the index is [`IndexInfo::uncounted`];
+//! - rays as the caller gives them (not normalized, `t` in the direction's units), where
+//!   tinybvh's own assume `t <= 1e30` and unit directions: the shim (`shim.cpp`) keeps such rays
+//!   out of the empty child slots of tinybvh's nodes (boxes at 1e30 that a ray with
+//!   `t_max = inf` or a short direction can reach, and that crash the traversal) by lowering
+//!   the ray's `t` below them, which loses no hit in front of them, and refuses the rays whose
+//!   coordinates overflow tinybvh's ray check ([`Index::refuses`]);
+//! - memory: the block array the traversal reads is the resident figure; the trees `BVH8_CPU`
+//!   keeps beside it are `kept_bytes`, and the build's peak is counted through tinybvh's
+//!   allocation hooks.
 
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
+use crate::index::build_budget::per_primitive;
 use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
@@ -26,7 +36,7 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct TinyBvhParams {}
 
-/// tinybvh's `BVH8_CPU`, opaque (owned by the C++ side).
+/// tinybvh's `BVH8_CPU` with the meter of its allocations, opaque (owned by the C++ side).
 #[repr(C)]
 struct Bvh8Cpu {
     _opaque: [u8; 0],
@@ -39,6 +49,8 @@ unsafe extern "C" {
         nodes: *mut u32,
         leaves: *mut u32,
         bytes: *mut u64,
+        other_bytes: *mut u64,
+        peak_bytes: *mut u64,
     );
     fn accelbench_tinybvh_intersect(
         h: *const Bvh8Cpu,
@@ -54,8 +66,16 @@ unsafe extern "C" {
         dir: *const f32,
         t_max: f32,
     ) -> i32;
+    fn accelbench_tinybvh_refuses(origin: *const f32, dir: *const f32, t_max: f32) -> i32;
     fn accelbench_tinybvh_free(h: *mut Bvh8Cpu);
 }
+
+/// Peak build bytes per triangle held to the memory budget (`Index::estimated_build_bytes`):
+/// the 48-byte vertex copy handed to tinybvh plus what tinybvh's hooks counted. Measured with
+/// `info --indices` (2026-12-03, one and two build threads alike): 435 on the bunny, 452 on the
+/// icosphere (20,480 and 1,310,720), 461 to 463 on soup (20,000 and 100,000), 485 on slivers
+/// (50,000); this is the largest with a margin of 15%.
+pub const TINYBVH_BUILD_BYTES_PER_PRIM: usize = 560;
 
 /// `tinybvh-bvh8`. The `BVH8_CPU` holds its own copy of every node and triangle (interleaved
 /// 256-byte nodes and 192-byte four-triangle leaves), so it outlives the vertex array it was
@@ -68,6 +88,11 @@ pub struct TinyBvh8 {
     leaves: usize,
     /// Bytes of the `BVH8_CPU` block array, as tinybvh allocates it.
     memory_bytes: usize,
+    /// What tinybvh holds beside the block array: the binary and 8-wide trees it was converted
+    /// from, which `BVH8_CPU` keeps.
+    kept_bytes: usize,
+    /// The most the build held: the vertex copy plus tinybvh's allocations at their peak.
+    peak_build_bytes: usize,
 }
 
 // SAFETY: after the build the C++ object is only read: `Intersect` and `IsOccluded` are `const`
@@ -86,7 +111,8 @@ impl Drop for TinyBvh8 {
 
 impl Index for TinyBvh8 {
     type Params = TinyBvhParams;
-    /// tinybvh allocates with C++ `new`, unseen by the heap meter: its peak is not measured.
+    /// tinybvh allocates outside our heap; the shim counts its allocations through tinybvh's
+    /// hooks (`BVHContext`), and the peak in [`IndexInfo`] is theirs plus the vertex copy.
     const FOREIGN_HEAP: bool = true;
 
     fn build<G: Geometry>(geom: &G, _: &TinyBvhParams) -> Result<Self, BuildError> {
@@ -109,16 +135,44 @@ impl Index for TinyBvh8 {
                 message: "tinybvh's build failed (out of memory?)".into(),
             });
         }
-        let (mut nodes, mut leaves, mut bytes) = (0u32, 0u32, 0u64);
+        let (mut nodes, mut leaves) = (0u32, 0u32);
+        let (mut bytes, mut kept, mut peak) = (0u64, 0u64, 0u64);
         // SAFETY: `bvh` is a live build; the outputs are valid for writes.
-        unsafe { accelbench_tinybvh_info(bvh, &mut nodes, &mut leaves, &mut bytes) };
+        unsafe {
+            accelbench_tinybvh_info(
+                bvh,
+                &mut nodes,
+                &mut leaves,
+                &mut bytes,
+                &mut kept,
+                &mut peak,
+            )
+        };
         Ok(TinyBvh8 {
             bvh,
             triangles: tris.len(),
             nodes: nodes as usize,
             leaves: leaves as usize,
             memory_bytes: bytes as usize,
+            kept_bytes: kept as usize,
+            peak_build_bytes: std::mem::size_of_val(verts.as_slice()) + peak as usize,
         })
+    }
+
+    fn estimated_build_bytes(prims: usize, _: &TinyBvhParams) -> Option<usize> {
+        per_primitive(prims, TINYBVH_BUILD_BYTES_PER_PRIM)
+    }
+
+    /// Rays whose coordinates overflow tinybvh's ray check (a sum of the origin, direction and
+    /// `t`, NaN when components near 3.4e38 of both signs meet), on which it exits the process.
+    fn refuses(ray: &Ray) -> Option<&'static str> {
+        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
+        // SAFETY: `o` and `d` hold 3 floats.
+        let refused = unsafe { accelbench_tinybvh_refuses(o.as_ptr(), d.as_ptr(), ray.t_max) };
+        (refused != 0).then_some(
+            "its coordinates overflow tinybvh's ray check (the sum of origin, direction and t is \
+             NaN), on which tinybvh exits the process",
+        )
     }
 
     #[inline]
@@ -151,8 +205,10 @@ impl Index for TinyBvh8 {
             nodes: self.nodes,
             leaves: self.leaves,
             memory_bytes: self.memory_bytes,
+            peak_build_bytes: Some(self.peak_build_bytes),
             prim_refs: self.triangles,
             uncounted: true,
+            extra: vec![("kept_bytes".into(), self.kept_bytes as f64)],
             ..IndexInfo::default()
         }
     }

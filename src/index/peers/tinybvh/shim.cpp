@@ -8,6 +8,8 @@
 #define TINYBVH_IMPLEMENTATION
 #include "tiny_bvh.h"
 
+#include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -21,19 +23,93 @@ using tinybvh::Ray;
 
 namespace {
 
-Ray make_ray(const float* o, const float* d, float t_max) {
-    Ray r;
+// tinybvh fills the unused child slots of an 8-wide node with the box [1e30, 1.00001e30]^3 and a
+// child index with EMPTY_BIT set. A ray whose slab test passes that box descends into the slot
+// and reads outside the tree (a segfault): with t_max = +inf, for example (1, 1, 1) from
+// (-100, -100, -100), or a direction like (0, 0, 1e-15), whose 1e30 reciprocals (tinybvh's
+// safercp) put every slab at +inf. tinybvh's own rays avoid it with t = 1e30 (BVH_FAR) and
+// normalized directions; ours keep the caller's t_max and direction, so the shim evaluates the
+// slab test on that box exactly as BVH8_CPU's traversal does (the same fused multiply-subtract,
+// max and min, in the same order) and, where it passes, lowers the ray's t below the box's entry.
+// That changes no hit: whatever lies in front of the box is still found.
+constexpr float kEmptyMin = 1e30f, kEmptyMax = 1.00001e30f;
+
+// _mm256_max_ps and _mm256_min_ps on one lane (the second operand when either is NaN).
+float max_ps(float a, float b) { return a > b ? a : b; }
+float min_ps(float a, float b) { return a < b ? a : b; }
+
+// The t below which `r` cannot reach an empty child slot: `t_max`, or just below the slot's entry.
+float below_empty_slots(const Ray& r, float t_max) {
+    float t1[3], t2[3];
+    for (int a = 0; a < 3; a++) {
+        const float rd = r.rD[a], ro = r.O[a] * rd;
+        const bool pos = r.D[a] >= 0;
+        t1[a] = std::fma(pos ? kEmptyMin : kEmptyMax, rd, -ro);
+        t2[a] = std::fma(pos ? kEmptyMax : kEmptyMin, rd, -ro);
+    }
+    const float tmin = max_ps(max_ps(max_ps(0.0f, t1[0]), t1[1]), t1[2]);
+    const float tmax = min_ps(min_ps(min_ps(t2[0], t_max), t2[1]), t2[2]);
+    return tmin <= tmax ? std::nextafter(tmin, -INFINITY) : t_max;
+}
+
+// tinybvh's VALIDATE_RAY exits the process when this sum is NaN, which finite rays reach when
+// their coordinates overflow it (components near 3.4e38 of both signs).
+bool fails_validation(const Ray& r) {
+    const float test = r.D.x + r.D.y + r.D.z + r.hit.t + r.O.x + r.O.y + r.O.z;
+    return std::isnan(test);
+}
+
+// tinybvh's ray for ours, with t (hit.t) set from `t_max` as above. Returns false when tinybvh
+// cannot take it (`fails_validation`): the caller answers a miss without tracing.
+bool make_ray(const float* o, const float* d, float t_max, Ray& r) {
     std::memset(static_cast<void*>(&r), 0, sizeof(Ray));
     r.O = bvhvec3(o[0], o[1], o[2]);
     r.D = bvhvec3(d[0], d[1], d[2]);
     r.rD = tinybvh::tinybvh_safercp(r.D);
     r.mask = RAY_MASK_INTERSECT_ALL;
-    r.hit.t = t_max;
+    r.hit.t = below_empty_slots(r, t_max);
     r.hit.prim = UINT32_MAX;
-    return r;
+    return !fails_validation(r);
+}
+
+// What tinybvh holds through its allocation hooks (BVHContext), in bytes: every array of the
+// build goes through them except BVH8_CPU's block array (malloc64), added by the build.
+struct Meter {
+    std::atomic<uint64_t> held{0}, peak{0};
+};
+
+// Each block carries its size in a 64-byte header, so the free hook knows what it returns and
+// the block stays 64-byte aligned as tinybvh's own malloc64 makes it.
+constexpr size_t kHeader = 64;
+
+void* metered_malloc(size_t size, void* userdata) {
+    if (size == 0) return nullptr;
+    void* block = tinybvh::malloc64(size + kHeader, nullptr);
+    if (!block) return nullptr;
+    *static_cast<uint64_t*>(block) = size;
+    Meter* m = static_cast<Meter*>(userdata);
+    const uint64_t now = m->held.fetch_add(size) + size;
+    uint64_t peak = m->peak.load();
+    while (now > peak && !m->peak.compare_exchange_weak(peak, now)) {
+    }
+    return static_cast<char*>(block) + kHeader;
+}
+
+void metered_free(void* ptr, void* userdata) {
+    if (!ptr) return;
+    void* block = static_cast<char*>(ptr) - kHeader;
+    static_cast<Meter*>(userdata)->held.fetch_sub(*static_cast<uint64_t*>(block));
+    tinybvh::free64(block, nullptr);
 }
 
 }  // namespace
+
+// A build with its meter; the meter outlives the tree (members are destroyed in reverse order),
+// whose destructor frees through the hooks.
+struct AccelbenchTinyBvh {
+    Meter meter;
+    BVH8_CPU bvh;
+};
 
 extern "C" {
 
@@ -42,9 +118,13 @@ extern "C" {
 // conversion (leaves combined and split to at most 4 triangles, 8-wide collapse). `threaded`
 // lets the builder use its job system (tinybvh uses it only from 50,000 triangles up).
 // Returns null when tinybvh throws. `verts` may be freed once this returns.
-BVH8_CPU* accelbench_tinybvh_build(const float* verts, uint32_t tris, int threaded) {
+AccelbenchTinyBvh* accelbench_tinybvh_build(const float* verts, uint32_t tris, int threaded) {
     try {
-        BVH8_CPU* h = new BVH8_CPU();
+        AccelbenchTinyBvh* a = new AccelbenchTinyBvh();
+        BVH8_CPU* h = &a->bvh;
+        h->context.malloc = metered_malloc;
+        h->context.free = metered_free;
+        h->context.userdata = &a->meter;
         BVH& b = h->bvh8.bvh;
         b.context = h->bvh8.context = h->context;
         b.threadedBuild = threaded != 0;
@@ -53,34 +133,61 @@ BVH8_CPU* accelbench_tinybvh_build(const float* verts, uint32_t tris, int thread
         b.Compact();
         h->bvh8.ConvertFrom(b, true);
         h->ConvertFrom(h->bvh8);
-        return h;
+        // The block array is allocated last, with everything above still held.
+        const uint64_t blocks = uint64_t(h->allocatedBlocks) * sizeof(*h->bvh8Data);
+        const uint64_t at_end = a->meter.held.load() + blocks;
+        if (at_end > a->meter.peak.load()) a->meter.peak.store(at_end);
+        return a;
     } catch (...) {
         return nullptr;
     }
 }
 
-// Nodes and leaves of the 8-wide tree, and the bytes of the BVH8_CPU block array.
-void accelbench_tinybvh_info(const BVH8_CPU* h, uint32_t* nodes, uint32_t* leaves, uint64_t* bytes) {
+// Nodes and leaves of the 8-wide tree; the bytes of the BVH8_CPU block array (64-byte blocks:
+// tinybvh's comment on `allocatedBlocks` says 16, its allocation is `blocksNeeded * 64`), what
+// tinybvh holds beside it (the binary and 8-wide trees it was converted from, which BVH8_CPU
+// keeps), and the most it held during the build.
+void accelbench_tinybvh_info(const AccelbenchTinyBvh* a, uint32_t* nodes, uint32_t* leaves,
+                             uint64_t* bytes, uint64_t* other_bytes, uint64_t* peak_bytes) {
+    const BVH8_CPU* h = &a->bvh;
     *nodes = h->bvh8.usedNodes;
     *leaves = h->bvh8.LeafCount(0);
-    *bytes = uint64_t(h->allocatedBlocks) * 16;
+    *bytes = uint64_t(h->allocatedBlocks) * sizeof(*h->bvh8Data);
+    *other_bytes = a->meter.held.load();
+    *peak_bytes = a->meter.peak.load();
 }
 
 // The closest hit with t below `t_max`: returns 1 and writes `t` and `prim`, or returns 0.
-int accelbench_tinybvh_intersect(const BVH8_CPU* h, const float* o, const float* d, float t_max,
+int accelbench_tinybvh_intersect(const AccelbenchTinyBvh* a, const float* o, const float* d, float t_max,
                                  float* t, uint32_t* prim) {
-    Ray r = make_ray(o, d, t_max);
-    h->Intersect(r);
+    Ray r;
+    if (!make_ray(o, d, t_max, r)) return 0;
+    const float t_start = r.hit.t;
+    a->bvh.Intersect(r);
     *t = r.hit.t;
     *prim = r.hit.prim;
-    return r.hit.t < t_max ? 1 : 0;
+    return r.hit.t < t_start ? 1 : 0;
 }
 
 // Whether anything is hit with t below `t_max` (tinybvh stops at the first hit it finds).
-int accelbench_tinybvh_occluded(const BVH8_CPU* h, const float* o, const float* d, float t_max) {
-    return h->IsOccluded(make_ray(o, d, t_max)) ? 1 : 0;
+int accelbench_tinybvh_occluded(const AccelbenchTinyBvh* a, const float* o, const float* d,
+                                float t_max) {
+    Ray r;
+    return make_ray(o, d, t_max, r) && a->bvh.IsOccluded(r) ? 1 : 0;
 }
 
-void accelbench_tinybvh_free(BVH8_CPU* h) { delete h; }
+// Whether tinybvh cannot take the ray (`fails_validation`): the two calls above answer it as a
+// miss without tracing it.
+int accelbench_tinybvh_refuses(const float* o, const float* d, float t_max) {
+    Ray r;
+    return make_ray(o, d, t_max, r) ? 0 : 1;
+}
+
+// The block array came from malloc64, not the hooks the destructor frees through.
+void accelbench_tinybvh_free(AccelbenchTinyBvh* a) {
+    tinybvh::free64(a->bvh.bvh8Data, nullptr);
+    a->bvh.bvh8Data = nullptr;
+    delete a;
+}
 
 }  // extern "C"
