@@ -3,7 +3,8 @@
 
 use super::kernel_arg::parse_kernel;
 use super::threads::{parse_threads, with_threads};
-use crate::geometry::{Hit, TriangleKernelKind};
+use crate::geometry::TriangleKernelKind;
+use crate::harness::verify::compare_closest;
 use crate::index::{Counters, IndexSpec, TraceMode, build_index, is_peer};
 use crate::rays::{read_rays_limit, write_hits};
 use crate::scene::load_scene;
@@ -100,12 +101,8 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
     println!("tests/ray:        {:.2}", total.prim_tests as f64 / n);
     println!("node visits/ray:  {:.2}", total.node_visits as f64 / n);
     println!("box tests/ray:    {:.2}", total.box_tests as f64 / n);
-    let same = |a: &Option<Hit>, b: &Option<Hit>| match (a, b) {
-        (Some(a), Some(b)) => a.bits_eq(b),
-        (a, b) => a.is_none() && b.is_none(),
-    };
     anyhow::ensure!(
-        counted.iter().zip(&hits).all(|(c, h)| same(c, h)),
+        compare_closest(&rays, &hits, &counted).is_empty(),
         "the counting pass returned different hits from the timed pass ({})",
         match is_peer(index.name()) {
             true => "the peer is not deterministic",

@@ -13,7 +13,8 @@
 //!
 //! Both refusals are [`BuildError::OverBudget`], which the suite reports as a skipped index.
 //! The heap counted is Rust's ([`crate::heap_meter`]), and Embree's through its memory monitor
-//! ([`room_for`]); tinybvh's C++ allocations are not seen.
+//! ([`room_for`]); tinybvh's allocations are counted through its hooks for its peak, but not
+//! refused (it cannot take a failed allocation), so it is checked before its build only.
 
 use super::BuildError;
 use crate::heap_meter::{held_bytes, human};

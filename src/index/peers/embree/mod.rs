@@ -20,10 +20,6 @@ mod stream;
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::{per_primitive, stopped};
-
-/// Embree's peak build heap per primitive for the estimate, in bytes: its memory monitor
-/// reported 147 to 175 B per primitive (soup, icosphere, bunny, slivers; every quality).
-pub(super) const EMBREE_BUILD_BYTES_PER_PRIM: usize = 200;
 use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use device::MonitoredDevice;
@@ -33,6 +29,10 @@ use embree3::{
 };
 use serde::{Deserialize, Serialize};
 use std::mem::MaybeUninit;
+
+/// Embree's peak build heap per primitive for the estimate, in bytes: its memory monitor
+/// reported 147 to 175 B per primitive (soup, icosphere, bunny, slivers; every quality).
+pub(super) const EMBREE_BUILD_BYTES_PER_PRIM: usize = 200;
 
 pub use packet16::EmbreeP16;
 
