@@ -70,6 +70,12 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
         a.heatmap.is_none() || (a.spp == 1 && a.camera == ModelKind::Pinhole),
         "--spp and --camera apply to shaded renders; a heat map counts one pinhole ray per pixel"
     );
+    anyhow::ensure!(
+        crate::index::kind_of(&a.index.name) != Some(crate::index::Kind::Gpu),
+        "render traces its shadow rays one at a time, and {} traces batches on the GPU (one \
+         dispatch per shadow ray): render with a CPU index such as bvh8",
+        a.index.name
+    );
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
     let geom = scene.geometry();

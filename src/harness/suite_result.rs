@@ -69,6 +69,11 @@ pub struct ResultRow {
     pub peer_t_off: Option<usize>,
     /// Peers only: verified rays where the exact reference contradicts the peer.
     pub peer_wrong: Option<usize>,
+    /// GPU indices only: the median kernel time of the timed passes in ms (timestamp queries;
+    /// `trace_ms_median` is end to end: rays up, dispatch, hits back). Empty elsewhere, and
+    /// where the adapter has no timestamps.
+    #[serde(default)]
+    pub gpu_kernel_ms: Option<f64>,
 }
 
 impl ResultRow {

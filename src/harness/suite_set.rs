@@ -375,8 +375,11 @@ fn timed_passes(
     let mut timings = vec![Vec::new(); entries.len()];
     for (threads, pool) in &pools.0 {
         let mut samples = vec![Vec::with_capacity(repeats); entries.len()];
+        let mut kernels = vec![Vec::new(); entries.len()];
         for pass in 1..=repeats {
-            for (entry, samples) in entries.iter_mut().zip(&mut samples) {
+            for ((entry, samples), kernels) in
+                entries.iter_mut().zip(&mut samples).zip(&mut kernels)
+            {
                 if interrupt::requested() {
                     return timings;
                 }
@@ -387,7 +390,10 @@ fn timed_passes(
                     pool.install(|| time_pass(entry.index, entry.mode, run.rays, &mut out))
                 });
                 match timed {
-                    Ok(t) => samples.push(t),
+                    Ok(t) => {
+                        samples.push(t);
+                        kernels.extend(entry.index.kernel_time());
+                    }
                     Err(p) => {
                         entry.failed = Some(p);
                         continue;
@@ -400,8 +406,8 @@ fn timed_passes(
                 }
             }
         }
-        for (timing, samples) in timings.iter_mut().zip(samples) {
-            let timed = (!samples.is_empty()).then(|| Timing::of(samples));
+        for ((timing, samples), kernels) in timings.iter_mut().zip(samples).zip(kernels) {
+            let timed = (!samples.is_empty()).then(|| Timing::of(samples).with_kernel(kernels));
             timing.push((*threads, timed));
         }
     }
@@ -473,5 +479,6 @@ fn result_row(
         peer_ties: c.peer.map(|p| p.ties),
         peer_t_off: c.peer.map(|p| p.t_off),
         peer_wrong: c.peer.map(|p| p.wrong),
+        gpu_kernel_ms: timing.and_then(|t| t.kernel).map(|k| secs(k) * 1e3),
     }
 }

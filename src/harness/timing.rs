@@ -22,6 +22,9 @@ pub struct Timing {
     pub fastest: Duration,
     pub slowest: Duration,
     pub repeats: usize,
+    /// The median of the GPU kernel times of the same passes
+    /// ([`crate::index::TraceIndex::kernel_time`]), for GPU indices with timestamps.
+    pub kernel: Option<Duration>,
 }
 
 impl Timing {
@@ -41,6 +44,17 @@ impl Timing {
             fastest,
             slowest,
             repeats,
+            kernel: None,
+        }
+    }
+
+    /// The timing with the median of `kernel` (one per pass, where every pass had one).
+    pub fn with_kernel(self, mut kernel: Vec<Duration>) -> Timing {
+        kernel.sort();
+        Timing {
+            kernel: (!kernel.is_empty() && kernel.len() == self.repeats)
+                .then(|| kernel[kernel.len() / 2]),
+            ..self
         }
     }
 }

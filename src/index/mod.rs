@@ -8,7 +8,8 @@
 //! The folder by kind: the trait and its types here (`contract`, `build_error`, `index_info`,
 //! `stats`, and `build_budget`, the memory budget builds are held to); the tracing machinery in [`trace`]; the kits the structures share in [`kit`]; one
 //! folder per structure (`brute`, `bvh`, `wbvh`, `grid`, `grid2`, `octree`, `kdtree`, `bsp`);
-//! the outside libraries in [`peers`]; the list of them all in [`registry`].
+//! the outside libraries in [`peers`]; the GPU backend in `gpu` (feature `gpu`); the list of
+//! them all in [`registry`].
 
 pub mod brute;
 pub mod bsp;
@@ -16,6 +17,8 @@ pub mod build_budget;
 mod build_error;
 pub mod bvh;
 mod contract;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod grid;
 pub mod grid2;
 mod index_info;
@@ -40,8 +43,8 @@ pub use kdtree::KdTree;
 pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};
 pub use peers::{ObvhsBvh2, ObvhsCwBvh};
 pub use registry::{
-    IndexSpec, Kind, build_index, estimated_build_bytes, index_names, is_peer, parse_params,
-    peer_names,
+    IndexSpec, Kind, build_index, estimated_build_bytes, index_names, is_peer, kind_of,
+    parse_params, peer_names,
 };
 pub use stats::{Counters, NoStats, Stats};
 pub use trace::{

@@ -32,6 +32,10 @@ pub struct RunMeta {
     /// field read back as `complete`.
     #[serde(default)]
     pub status: RunStatus,
+    /// The GPU adapter and its driver, when the run has GPU indices (feature `gpu`) and the
+    /// machine an adapter.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gpu_adapter: Option<String>,
 }
 
 /// How a run ended, `meta.json`'s `status`: `complete` (every measurement made and passed),
@@ -116,8 +120,23 @@ impl RunMeta {
             shard: config.shard,
             config: serde_json::to_value(config).expect("the configuration serializes"),
             status: RunStatus::Complete,
+            gpu_adapter: gpu_adapter(config),
         }
     }
+}
+
+/// The adapter of the run's GPU indices, opened only when the run has any.
+fn gpu_adapter(config: &SuiteConfig) -> Option<String> {
+    #[cfg(feature = "gpu")]
+    if config
+        .indices
+        .iter()
+        .any(|s| crate::index::registry::kind_of(&s.name) == Some(crate::index::Kind::Gpu))
+    {
+        return crate::index::gpu::gpu().ok().map(|g| g.adapter.clone());
+    }
+    let _ = config;
+    None
 }
 
 /// `YYYYMMDD-HHMMSS` of the current UTC time (a run id).

@@ -364,6 +364,7 @@ mod tests {
             peer_ties: None,
             peer_t_off: None,
             peer_wrong: None,
+            gpu_kernel_ms: None,
         }
     }
 

@@ -16,6 +16,7 @@ mod cli;
 mod compare;
 mod full_disk;
 mod fuzz;
+mod gpu;
 mod grid;
 mod grid2;
 mod kdtree;

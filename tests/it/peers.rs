@@ -7,23 +7,22 @@
 
 use crate::common;
 
-use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
-use accelbench::harness::peer_check::{PeerCounts, Verdict, classify};
+use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::suite::{Shard, SuiteConfig, run_suite, run_suite_with};
-use accelbench::harness::timing::Query;
-use accelbench::harness::verify::compare_closest;
 use accelbench::harness::workload::{self, RaySet, SetSizes};
 use accelbench::index::{
-    BuildError, IndexSpec, TraceIndex, TraceMode, build_index, build_index_on, is_peer, peer_names,
+    BuildError, IndexSpec, Kind, TraceIndex, TraceMode, build_index, build_index_on, is_peer,
+    kind_of, peer_names,
 };
 use accelbench::scene::{Scene, SceneGeometry, Triangles, generators};
 use indicatif::ProgressBar;
 
-/// The peers of this build (obvhs excluded: `tests/it/obvhs_peer.rs`).
+/// The peers of this build (obvhs excluded: `tests/it/obvhs_peer.rs`; the GPU indices:
+/// `tests/it/gpu.rs`).
 fn peers() -> Vec<&'static str> {
     peer_names()
         .into_iter()
-        .filter(|n| !n.starts_with("obvhs"))
+        .filter(|n| !n.starts_with("obvhs") && kind_of(n) == Some(Kind::Peer))
         .collect()
 }
 
@@ -40,24 +39,7 @@ fn build(spec: &str, scene: &Scene) -> Box<dyn TraceIndex> {
     common::build(spec, scene, TriangleKernelKind::Exact)
 }
 
-/// Classifies every ray where `got` differs from `expected`, printing the wrong ones.
-fn judge(
-    what: &str,
-    scene: &Scene,
-    rays: &[Ray],
-    expected: &[Option<Hit>],
-    got: &[Option<Hit>],
-) -> PeerCounts {
-    let mut counts = PeerCounts::default();
-    for m in compare_closest(rays, expected, got) {
-        let v = classify(scene, &rays[m.ray_index], Query::Closest, m.expected, m.got);
-        if v == Verdict::Wrong {
-            eprintln!("{what}: wrong: {m}");
-        }
-        counts.add(v);
-    }
-    counts
-}
+use common::judge::judge;
 
 /// The generated triangle scenes: every peer builds and traces them (any-hit consistent with its
 /// closest hit); on protocol-like rays (48 x 48 primary, 2000 incoherent) the robust `embree`

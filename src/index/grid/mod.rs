@@ -67,6 +67,12 @@ impl Grid {
         &self.layout
     }
 
+    /// Every cell's primitives, as compressed rows (for the GPU upload).
+    #[cfg(feature = "gpu")]
+    pub(crate) fn cells(&self) -> &Cells {
+        &self.cells
+    }
+
     /// The primitives stored in cell `c` (linear index), ascending.
     pub fn cell_prims(&self, c: usize) -> &[u32] {
         self.cells.of(c)

@@ -20,6 +20,9 @@ pub enum Kind {
     /// A peer (obvhs, ...) with its own triangle or box tests: its mismatches are reported, and
     /// callers decide whether they fail a run.
     Peer,
+    /// A GPU shader over one of our structures (`index::gpu`): its own `f32` triangle test, so
+    /// it is checked like a peer (classified, never failed).
+    Gpu,
 }
 
 struct Entry {
@@ -35,6 +38,17 @@ const fn entry<I: BatchIndex>(name: &'static str, kind: Kind) -> Entry {
         build: build_dyn::<I>,
         estimate: estimate_dyn::<I>,
         kind,
+    }
+}
+
+/// The entry of GPU index `L` (feature `gpu`): built by [`crate::index::gpu::build`].
+#[cfg(feature = "gpu")]
+const fn gpu_entry<L: crate::index::gpu::GpuLayout>(name: &'static str) -> Entry {
+    Entry {
+        name,
+        build: crate::index::gpu::build::<L>,
+        estimate: crate::index::gpu::estimate::<L>,
+        kind: Kind::Gpu,
     }
 }
 
@@ -62,6 +76,12 @@ const REGISTRY: &[Entry] = &[
     entry::<crate::index::peers::embree::EmbreeP16>("embree-p16", Kind::Peer),
     #[cfg(feature = "tinybvh")]
     entry::<crate::index::peers::tinybvh::TinyBvh8>("tinybvh-bvh8", Kind::Peer),
+    #[cfg(feature = "gpu")]
+    gpu_entry::<crate::index::gpu::CwBvh>("gpu-cwbvh"),
+    #[cfg(feature = "gpu")]
+    gpu_entry::<crate::index::gpu::Bvh2>("gpu-bvh2"),
+    #[cfg(feature = "gpu")]
+    gpu_entry::<crate::index::gpu::GridCells>("gpu-grid"),
 ];
 
 /// Names of all registered indices, in report order.
@@ -69,19 +89,24 @@ pub fn index_names() -> Vec<&'static str> {
     REGISTRY.iter().map(|e| e.name).collect()
 }
 
-/// Whether `name` is a registered peer ([`Kind::Peer`]): its mismatches are reported, not
-/// failed. The one place that answers this.
+/// Whether `name` is a registered peer or GPU index ([`Kind::Peer`], [`Kind::Gpu`]): its
+/// mismatches are classified and reported, not failed. The one place that answers this.
 pub fn is_peer(name: &str) -> bool {
     REGISTRY
         .iter()
-        .any(|e| e.name == name && e.kind == Kind::Peer)
+        .any(|e| e.name == name && e.kind != Kind::Ours)
 }
 
-/// Names of the registered peers, in report order.
+/// The kind of registered index `name`, `None` for an unknown name.
+pub fn kind_of(name: &str) -> Option<Kind> {
+    REGISTRY.iter().find(|e| e.name == name).map(|e| e.kind)
+}
+
+/// Names of the registered peers and GPU indices, in report order.
 pub fn peer_names() -> Vec<&'static str> {
     REGISTRY
         .iter()
-        .filter(|e| e.kind == Kind::Peer)
+        .filter(|e| e.kind != Kind::Ours)
         .map(|e| e.name)
         .collect()
 }

@@ -6,5 +6,7 @@ mod list;
 mod spec;
 
 pub use build::parse_params;
-pub use list::{Kind, build_index, estimated_build_bytes, index_names, is_peer, peer_names};
+pub use list::{
+    Kind, build_index, estimated_build_bytes, index_names, is_peer, kind_of, peer_names,
+};
 pub use spec::IndexSpec;

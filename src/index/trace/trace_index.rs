@@ -6,6 +6,7 @@ use super::mode::TraceMode;
 use crate::geometry::{Hit, Ray};
 use crate::index::{BuildError, Counters, IndexInfo};
 use crate::scene::SceneGeometry;
+use std::time::Duration;
 
 /// The object-safe face of a built index. Batch methods run in parallel on the current rayon
 /// pool (`ThreadPool::install` picks the thread count); single-ray methods are for callers that
@@ -40,6 +41,12 @@ pub trait TraceIndex: Send + Sync {
     /// [`BuildError::Unsupported`] when the index has no refit. After any other error the
     /// index is unusable: drop it and rebuild.
     fn refit(&mut self, frame: &SceneGeometry) -> Result<(), BuildError>;
+    /// The kernel time of the last batch traced, for an index on a GPU whose adapter has
+    /// timestamp queries (the batch's end-to-end time includes the upload of the rays and the
+    /// readback of the hits); `None` for every other index.
+    fn kernel_time(&self) -> Option<Duration> {
+        None
+    }
     fn closest_hit(&self, ray: &Ray) -> Option<Hit>;
     fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit>;
     fn any_hit(&self, ray: &Ray) -> bool;

@@ -8,6 +8,7 @@ pub mod cli;
 pub mod drop_one;
 pub mod far;
 pub mod grid_rays;
+pub mod judge;
 
 use accelbench::geometry::Hit;
 use accelbench::geometry::{Ray, TriangleKernelKind};
