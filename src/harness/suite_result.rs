@@ -74,6 +74,10 @@ pub struct ResultRow {
     /// where the adapter has no timestamps.
     #[serde(default)]
     pub gpu_kernel_ms: Option<f64>,
+    /// GPU indices only: the structure's upload in ms, part of `build_ms`
+    /// (`IndexInfo::upload_time`).
+    #[serde(default)]
+    pub gpu_upload_ms: Option<f64>,
 }
 
 impl ResultRow {

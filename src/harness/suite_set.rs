@@ -480,5 +480,6 @@ fn result_row(
         peer_t_off: c.peer.map(|p| p.t_off),
         peer_wrong: c.peer.map(|p| p.wrong),
         gpu_kernel_ms: timing.and_then(|t| t.kernel).map(|k| secs(k) * 1e3),
+        gpu_upload_ms: info.upload_time.map(|u| secs(u) * 1e3),
     }
 }

@@ -23,6 +23,8 @@ pub struct IndexInfo {
     pub prim_refs: usize,
     /// Build time, measured by the registry around [`crate::index::Index::build`].
     pub build_time: Duration,
+    /// GPU indices only: the part of `build_time` spent uploading the structure to the device.
+    pub upload_time: Option<Duration>,
     /// Structure-specific figures (name, value), e.g. `("empty_cells", 0.4)`.
     pub extra: Vec<(String, f64)>,
     /// `true` for peers whose traversal reports nothing to [`crate::index::Stats`] (Embree, tinybvh): reports

@@ -365,6 +365,7 @@ mod tests {
             peer_t_off: None,
             peer_wrong: None,
             gpu_kernel_ms: None,
+            gpu_upload_ms: None,
         }
     }
 

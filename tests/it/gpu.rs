@@ -200,13 +200,18 @@ fn run_reports_gpu_rows() {
             gpu_rows += 1;
             assert!(index.ends_with("+stream"), "{index}");
             assert_eq!(&row[col("peer_wrong")], "0", "{index}: {csv}");
+            let upload: f64 = row[col("gpu_upload_ms")].parse().unwrap();
+            assert!(
+                upload > 0.0 && upload <= row[col("build_ms")].parse().unwrap(),
+                "{index}"
+            );
             let kernel = &row[col("gpu_kernel_ms")];
             assert!(
                 kernel.is_empty() || kernel.parse::<f64>().unwrap() > 0.0,
                 "{index}: {kernel}"
             );
         } else {
-            assert!(row[col("gpu_kernel_ms")].is_empty());
+            assert!(row[col("gpu_kernel_ms")].is_empty() && row[col("gpu_upload_ms")].is_empty());
         }
     }
     assert_eq!(gpu_rows, 3 * 2, "{csv}");

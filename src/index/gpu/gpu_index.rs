@@ -6,7 +6,6 @@ use super::context::{Gpu, gpu};
 use super::program::Program;
 use crate::geometry::{Hit, Ray, Triangle, TriangleKernelKind};
 use crate::heap_meter::peak_during;
-use crate::index::registry::{IndexSpec, parse_params};
 use crate::index::{BuildError, Counters, Index, IndexInfo, TraceIndex, TraceMode};
 use crate::scene::{FromScene, GeometryVisitor, SceneGeometry, with_geometry};
 use std::sync::Mutex;
@@ -41,28 +40,24 @@ pub trait GpuLayout {
     fn layout(base: &Self::Base, tris: &[Triangle]) -> (IndexInfo, Vec<(&'static str, Vec<u8>)>);
 }
 
-/// The estimate of GPU index `L`'s build: its base's and the upload's.
+/// The estimate of GPU index `L`'s build with its base's `params`: the base's and the upload's.
 pub(crate) fn estimate<L: GpuLayout>(
-    spec: &IndexSpec,
+    params: &<L::Base as Index>::Params,
     prims: usize,
-) -> Result<Option<usize>, BuildError> {
-    let params = parse_params::<L::Base>(spec)?;
-    Ok(
-        L::Base::estimated_build_bytes(prims, &params)
-            .map(|b| b + prims * L::UPLOAD_BYTES_PER_PRIM),
-    )
+) -> Option<usize> {
+    L::Base::estimated_build_bytes(prims, params).map(|b| b + prims * L::UPLOAD_BYTES_PER_PRIM)
 }
 
-/// Builds GPU index `L` of `spec`: its base over the scene's triangles, then the upload. Skipped
-/// ([`BuildError::Unsupported`]) without an adapter or on a scene with other primitives (the
-/// shaders test triangles only); a build over the memory budget is refused first.
+/// Builds GPU index `L`, named `name`, with its base's `params`: the base over the scene's
+/// triangles, then the upload. Skipped ([`BuildError::Unsupported`]) without an adapter or on a
+/// scene with other primitives (the shaders test triangles only); a build over the memory
+/// budget is refused first.
 pub(crate) fn build<L: GpuLayout>(
-    spec: &IndexSpec,
+    name: &str,
+    params: &<L::Base as Index>::Params,
     geom: &SceneGeometry,
-    _kernel: TriangleKernelKind,
 ) -> Result<Box<dyn TraceIndex>, BuildError> {
-    let name = &spec.name;
-    let params = parse_params::<L::Base>(spec)?;
+    let name = &name.to_owned();
     let gpu = gpu().map_err(|reason| BuildError::Unsupported {
         index: name.clone(),
         reason,
@@ -82,7 +77,7 @@ pub(crate) fn build<L: GpuLayout>(
             message: format!("{} triangles exceed the shaders' 32-bit ids", tris.len()),
         });
     }
-    if let Some(need) = estimate::<L>(spec, tris.len())? {
+    if let Some(need) = estimate::<L>(params, tris.len()) {
         crate::index::build_budget::ensure_fits(name, tris.len(), need)?;
     }
     struct Build<'p, I: Index>(&'p I::Params);
@@ -97,14 +92,14 @@ pub(crate) fn build<L: GpuLayout>(
         let base = with_geometry(
             geom,
             TriangleKernelKind::Watertight,
-            Build::<L::Base>(&params),
+            Build::<L::Base>(params),
         )?;
         Ok(L::layout(&base, tris))
     });
     let (mut info, buffers) = built?;
     info.build_time = start.elapsed();
     info.peak_build_bytes = Some(peak);
-    let params = toml::to_string(&params)
+    let params = toml::to_string(params)
         .unwrap_or_default()
         .trim()
         .replace('\n', ",");
@@ -120,8 +115,7 @@ pub(crate) fn build<L: GpuLayout>(
     info.build_time += upload;
     info.memory_bytes = program.bytes;
     info.uncounted = true;
-    info.extra
-        .push(("upload_ms".into(), upload.as_secs_f64() * 1e3));
+    info.upload_time = Some(upload);
     Ok(Box::new(GpuIndex {
         name: name.clone(),
         params,

@@ -14,8 +14,8 @@
 //! ([`crate::index::Kind::Gpu`]): every disagreement with brute force classified (tie, `t off`,
 //! wrong), never failed. They trace only as a batch: their rows are `INDEX+stream`.
 //!
-//! The build time is our structure's build plus its upload; the upload alone is the extra
-//! figure `upload_ms`. `memory_bytes` is the structure's bytes on the device. The kernel time
+//! The build time is our structure's build plus its upload; the upload alone is
+//! `IndexInfo::upload_time` (`gpu_upload_ms` in `results.csv`). `memory_bytes` is the structure's bytes on the device. The kernel time
 //! of a batch (timestamp queries, where the adapter has them) is
 //! [`crate::index::TraceIndex::kernel_time`].
 

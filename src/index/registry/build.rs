@@ -60,3 +60,27 @@ pub(super) fn build_dyn<I: BatchIndex>(
         },
     )
 }
+
+/// Builds GPU index `L` of `spec` (feature `gpu`): its base's parameters, then
+/// [`crate::index::gpu::build`]. The kernel is the shaders' own.
+#[cfg(feature = "gpu")]
+pub(super) fn build_gpu<L: crate::index::gpu::GpuLayout>(
+    spec: &IndexSpec,
+    geom: &SceneGeometry,
+    _kernel: TriangleKernelKind,
+) -> Result<Box<dyn TraceIndex>, BuildError> {
+    let params = parse_params::<L::Base>(spec)?;
+    crate::index::gpu::build::<L>(&spec.name, &params, geom)
+}
+
+/// [`crate::index::gpu::estimate`] of GPU index `L` with the parameters of `spec`.
+#[cfg(feature = "gpu")]
+pub(super) fn estimate_gpu<L: crate::index::gpu::GpuLayout>(
+    spec: &IndexSpec,
+    prims: usize,
+) -> Result<Option<usize>, BuildError> {
+    Ok(crate::index::gpu::estimate::<L>(
+        &parse_params::<L::Base>(spec)?,
+        prims,
+    ))
+}

@@ -41,13 +41,13 @@ const fn entry<I: BatchIndex>(name: &'static str, kind: Kind) -> Entry {
     }
 }
 
-/// The entry of GPU index `L` (feature `gpu`): built by [`crate::index::gpu::build`].
+/// The entry of GPU index `L` (feature `gpu`): its parameters are its base's.
 #[cfg(feature = "gpu")]
 const fn gpu_entry<L: crate::index::gpu::GpuLayout>(name: &'static str) -> Entry {
     Entry {
         name,
-        build: crate::index::gpu::build::<L>,
-        estimate: crate::index::gpu::estimate::<L>,
+        build: super::build::build_gpu::<L>,
+        estimate: super::build::estimate_gpu::<L>,
         kind: Kind::Gpu,
     }
 }
