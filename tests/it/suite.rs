@@ -100,13 +100,16 @@ fn every_registered_index_agrees_in_the_suite() {
     let res =
         accelbench::harness::suite::run_suite(&[scene], &cfg, &ProgressBar::hidden()).unwrap();
     assert_eq!(res.mismatch_total, 0, "{:?}", res.mismatches.first());
-    // Triangle-only peers (features `embree`, `tinybvh`) skip this scene with spheres.
+    // Triangle-only peers (features `embree`, `tinybvh`) and GPU indices (`gpu`) skip this
+    // scene with spheres.
     let skipped = res
         .notes
         .iter()
         .filter(|n| {
             n.reason
                 .starts_with("skipped: the peer tests triangles only")
+                || n.reason
+                    .starts_with("skipped: the GPU shaders test triangles only")
         })
         .count();
     assert_eq!(res.notes.len(), skipped, "{:?}", res.notes);
