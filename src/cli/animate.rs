@@ -27,8 +27,9 @@ pub struct AnimateArgs {
     /// (`terrain`, `icosphere:n=100000`): its rest pose.
     #[arg(long)]
     scene: String,
-    /// How the scene moves: `twist[:turns=0.25]` (about the vertical axis, more with height)
-    /// or `wave[:amplitude=0.02,waves=2]` (a travelling wave along x lifts it along y).
+    /// How the scene moves: `twist[:turns=0.25]` (about the vertical axis, more with height),
+    /// `wave[:amplitude=0.02,waves=2]` (a travelling wave along x lifts it along y) or
+    /// `cloth[:drop=0.5,ball=0.3]` (it falls like a sheet and drapes over a ball).
     #[arg(long, default_value = "twist")]
     motion: MotionSpec,
     /// Frames, the first being the motion's start (time 0) and the last its end (time 1).

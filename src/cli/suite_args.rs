@@ -51,7 +51,9 @@ pub struct SuiteArgs {
     /// index's own batch technique: bvh4/bvh8 interleaved and lockstep walks, embree-p16's
     /// 16-ray packets; rows `INDEX+stream` only for indices that have one), last-hit (the
     /// previous ray's hit primitive tested first), packets4, packets8 (the coherent sets in
-    /// packets of neighbouring rays; bvh, bvh4 and bvh8 walk packets, the others ray by ray).
+    /// packets of neighbouring rays; bvh, bvh4 and bvh8 walk packets, the others ray by ray),
+    /// reorder (the batch sorted by origin and direction, then one query at a time; rows
+    /// `INDEX+reorder`).
     #[arg(long, value_delimiter = ',', value_parser = TraceMode::parse, default_value = "single,stream")]
     pub modes: Vec<TraceMode>,
     /// Shorthand: add `last-hit` to `--modes`.

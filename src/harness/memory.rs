@@ -9,7 +9,8 @@
 use super::suite::SuiteConfig;
 use super::workload::RaySet;
 use crate::geometry::{Hit, Ray};
-use crate::index::Counters;
+use crate::index::trace::reorder;
+use crate::index::{Counters, TraceMode};
 use crate::scene::Scene;
 use std::mem::size_of;
 
@@ -143,11 +144,19 @@ fn size_option(set: RaySet, cfg: &SuiteConfig) -> String {
 /// Bytes per ray of a set while the suite runs it: the rays, brute force's sample of them with
 /// its ids and hits, the counting pass's per-ray counters, and per index and mode its answers,
 /// plus the first index's copy, the reference mode's copy and the timed pass's output and its
-/// copy.
+/// copy, and with the `reorder` mode what it holds while it traces ([`reorder::BYTES_PER_RAY`]).
 fn bytes_per_ray(cfg: &SuiteConfig) -> u64 {
     let (ray, hit) = (size_of::<Ray>() as u64, size_of::<Option<Hit>>() as u64);
     let entries = (cfg.indices.len() * cfg.modes.len().max(1)) as u64;
-    2 * ray + size_of::<usize>() as u64 + size_of::<Counters>() as u64 + hit * (entries + 5)
+    let reorder = match cfg.modes.contains(&TraceMode::Reorder) {
+        true => reorder::BYTES_PER_RAY as u64,
+        false => 0,
+    };
+    2 * ray
+        + size_of::<usize>() as u64
+        + size_of::<Counters>() as u64
+        + hit * (entries + 5)
+        + reorder
 }
 
 /// The most the suite holds at once for ray sets over `scenes`: per scene the primary rays (and

@@ -6,6 +6,7 @@ pub mod interrupt;
 pub mod median_interval;
 pub mod memory;
 pub mod peer_check;
+mod set_row;
 pub mod shard;
 pub mod suite;
 mod suite_config;

@@ -5,15 +5,16 @@
 use super::contain::contained;
 use super::interrupt;
 use super::peer_check::{PeerCounts, classify};
+use super::set_row::{SetCounts, result_row, row_label};
 use super::suite_config::{Pools, SuiteConfig};
-use super::suite_result::{MismatchRecord, Note, ResultRow, SuiteResult};
+use super::suite_result::{MismatchRecord, Note, SuiteResult};
 use super::timing::{
     BatchHits, PassOutput, Query, Timing, counting_pass, counting_pass_in, time_pass,
 };
 use super::verify::{Mismatch, compare_closest};
 use super::workload::RaySet;
+use crate::geometry::Ray;
 use crate::geometry::triangle::exact::fallback_total;
-use crate::geometry::{Ray, TriangleKernelKind};
 use crate::index::{Counters, TraceIndex, TraceMode, is_peer};
 use crate::scene::Scene;
 use indicatif::ProgressBar;
@@ -46,14 +47,6 @@ struct Tally<'a> {
     count: usize,
     /// Peers only: their disagreements with brute force, classified.
     peer: Option<PeerCounts>,
-}
-
-/// A row's index label: the index's name in `single` mode, `INDEX+MODE` otherwise.
-fn row_label(index: &str, mode: TraceMode) -> String {
-    match mode {
-        TraceMode::Single => index.to_owned(),
-        m => format!("{index}+{}", m.label()),
-    }
 }
 
 impl Tally<'_> {
@@ -259,18 +252,25 @@ pub(super) fn run_set<'a>(
             continue;
         }
         let counts = SetCounts {
+            mode: entry.mode,
             total: entry.total,
             hits: entry.hits.iter().flatten().count(),
             mismatches: entry.tally.count,
             exact_fallbacks: entry.exact_fallbacks,
             peer: entry.tally.peer,
+            brute_verified_rays: run.ref_ids.len(),
         };
-        let label = row_label(entry.index.name(), entry.mode);
-        for (threads, timing) in timings {
-            let mut row = result_row(&run, entry.index, &counts, threads, timing, cfg);
-            row.index.clone_from(&label);
-            row.mode = entry.mode.label();
-            res.rows.push(row);
+        for timed in timings {
+            let (scene, set, rays) = (run.scene, run.set, run.rays.len());
+            res.rows.push(result_row(
+                scene,
+                set,
+                rays,
+                entry.index,
+                &counts,
+                timed,
+                cfg,
+            ));
         }
     }
     failed
@@ -412,74 +412,4 @@ fn timed_passes(
         }
     }
     timings
-}
-
-/// What the counting pass and verification found for one index on one set.
-struct SetCounts {
-    total: Counters,
-    hits: usize,
-    mismatches: usize,
-    /// Edge functions the exact kernel's fallback decided during the counting pass.
-    exact_fallbacks: u64,
-    peer: Option<PeerCounts>,
-}
-
-fn result_row(
-    run: &SetRun,
-    index: &dyn TraceIndex,
-    c: &SetCounts,
-    threads: usize,
-    timing: Option<Timing>,
-    cfg: &SuiteConfig,
-) -> ResultRow {
-    let n = run.rays.len() as f64;
-    let info = index.info();
-    // Indices that count nothing (Embree, tinybvh) get NaN ("–" in the summary), not 0.
-    let counted = |v: f64| if info.uncounted { f64::NAN } else { v };
-    let secs = |d: std::time::Duration| d.as_secs_f64();
-    let [median, spread, fastest, slowest] = timing.map_or([f64::NAN; 4], |t| {
-        [t.median, t.spread, t.fastest, t.slowest].map(secs)
-    });
-    ResultRow {
-        scene: run.scene.name.clone(),
-        primitives: run.scene.len(),
-        index: index.name().to_owned(),
-        params: index.params().to_owned(),
-        mode: TraceMode::Single.label(),
-        ray_set: run.set.name().to_owned(),
-        rays: run.rays.len(),
-        threads,
-        build_ms: info.build_time.as_secs_f64() * 1e3,
-        memory_bytes: info.memory_bytes,
-        peak_build_bytes: info.peak_build_bytes,
-        trace_ms_median: median * 1e3,
-        trace_ms_spread: spread * 1e3,
-        mrays_per_s: n / median / 1e6,
-        mrays_ci_low: n / slowest / 1e6,
-        mrays_ci_high: n / fastest / 1e6,
-        mtests_per_s: counted(c.total.prim_tests as f64 / median / 1e6),
-        prim_tests_per_ray: counted(c.total.prim_tests as f64 / n),
-        node_visits_per_ray: counted(c.total.node_visits as f64 / n),
-        box_tests_per_ray: counted(c.total.box_tests as f64 / n),
-        hits: c.hits,
-        mismatches: c.mismatches,
-        brute_verified_rays: run.ref_ids.len(),
-        query: match run.set.query() {
-            Query::Closest => "closest",
-            Query::Any => "any",
-        }
-        .into(),
-        kernel: cfg.kernel.name().into(),
-        repeats: if cfg.timed { cfg.repeats } else { 0 },
-        exact_fallback_rate: if cfg.kernel == TriangleKernelKind::Exact && !is_peer(index.name()) {
-            c.exact_fallbacks as f64 / (3 * c.total.prim_tests.max(1)) as f64
-        } else {
-            f64::NAN
-        },
-        peer_ties: c.peer.map(|p| p.ties),
-        peer_t_off: c.peer.map(|p| p.t_off),
-        peer_wrong: c.peer.map(|p| p.wrong),
-        gpu_kernel_ms: timing.and_then(|t| t.kernel).map(|k| secs(k) * 1e3),
-        gpu_upload_ms: info.upload_time.map(|u| secs(u) * 1e3),
-    }
 }

@@ -3,6 +3,7 @@
 //! the separate [`crate::index::BatchIndex`].
 
 use crate::geometry::{Hit, Ray};
+use crate::index::hit_query::{AnyHit, Closest, HitQuery};
 use crate::index::{BuildError, IndexInfo, Stats};
 use crate::scene::Geometry;
 use serde::Serialize;
@@ -23,12 +24,32 @@ pub trait Index: Sized + Send + Sync + 'static {
     /// Builds the index over `geom`. Fails with a clear error on absurd parameters.
     fn build<G: Geometry>(geom: &G, params: &Self::Params) -> Result<Self, BuildError>;
 
+    /// The answer to query `Q` for `ray` over `[ray.t_min, ray.t_max]`: one walk written once
+    /// for both query kinds ([`HitQuery`]); an index that asks a library picks its call with
+    /// [`HitQuery::select`].
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        ray: &Ray,
+        stats: &mut S,
+    ) -> Q::Answer;
+
     /// The closest hit in `[ray.t_min, ray.t_max]`.
-    fn closest_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S)
-    -> Option<Hit>;
+    #[inline]
+    fn closest_hit<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        ray: &Ray,
+        stats: &mut S,
+    ) -> Option<Hit> {
+        self.query::<Closest, G, S>(geom, ray, stats)
+    }
 
     /// Whether any primitive is hit in `[ray.t_min, ray.t_max]` (stops at the first).
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool;
+    #[inline]
+    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
+        self.query::<AnyHit, G, S>(geom, ray, stats)
+    }
 
     /// Size and shape (the registry fills in `build_time`).
     fn info(&self) -> IndexInfo;

@@ -5,8 +5,8 @@
 //! the geometry's shared kernel. Traversal is generic over [`Stats`]: [`NoStats`] for timed
 //! runs, [`Counters`] for counting.
 //!
-//! The folder by kind: the trait and its types here (`contract`, `build_error`, `index_info`,
-//! `stats`, and `build_budget`, the memory budget builds are held to); the tracing machinery in [`trace`]; the kits the structures share in [`kit`]; one
+//! The folder by kind: the trait and its types here (`contract`, `hit_query` (the query
+//! kinds every walk is generic over), `build_error`, `index_info`, `stats`, and `build_budget`, the memory budget builds are held to); the tracing machinery in [`trace`]; the kits the structures share in [`kit`]; one
 //! folder per structure (`brute`, `bvh`, `wbvh`, `grid`, `grid2`, `octree`, `kdtree`, `bsp`);
 //! the outside libraries in [`peers`]; the GPU backend in `gpu` (feature `gpu`); the list of
 //! them all in [`registry`].
@@ -21,6 +21,7 @@ mod contract;
 pub mod gpu;
 pub mod grid;
 pub mod grid2;
+pub mod hit_query;
 mod index_info;
 pub mod kdtree;
 pub mod kit;
@@ -38,6 +39,7 @@ pub use bvh::{Bvh, BvhParams};
 pub use contract::Index;
 pub use grid::{Grid, GridParams};
 pub use grid2::{Grid2, Grid2Params};
+pub use hit_query::{AnyHit, Closest, HitQuery};
 pub use index_info::IndexInfo;
 pub use kdtree::KdTree;
 pub use octree::{NeighborOctree, OctreeParams, TopDownOctree};

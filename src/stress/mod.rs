@@ -184,7 +184,7 @@ mod tests {
     use super::*;
     use crate::geometry::Ray;
     use crate::geometry::triangle::Watertight;
-    use crate::index::{BatchIndex, Index, IndexInfo, Stats, build_index_on};
+    use crate::index::{BatchIndex, HitQuery, Index, IndexInfo, Stats, build_index_on};
     use crate::scene::{Geometry, Triangles};
 
     /// A broken index: brute force that never tests the first half of the primitives.
@@ -198,18 +198,19 @@ mod tests {
         fn build<G: Geometry>(geom: &G, _: &Self::Params) -> Result<Self, BuildError> {
             Ok(SkipsHalf(geom.len() as u32))
         }
-        fn closest_hit<G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Option<Hit> {
-            let mut best = crate::geometry::ClosestHit::new(r.t_max);
+        fn query<Q: HitQuery, G: Geometry, S: Stats>(
+            &self,
+            g: &G,
+            r: &Ray,
+            s: &mut S,
+        ) -> Q::Answer {
+            let mut found = Q::start(r);
             for p in self.0 / 2..self.0 {
-                s.prim_test();
-                if let Some(t) = g.intersect(p, r, best.t()) {
-                    best.offer(t, p);
+                if crate::index::kit::prim_test::test::<Q, G, S>(&mut found, g, p, r, s) {
+                    break;
                 }
             }
-            best.get()
-        }
-        fn any_hit<G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> bool {
-            self.closest_hit(g, r, s).is_some()
+            Q::answer(found)
         }
         fn info(&self) -> IndexInfo {
             IndexInfo::default()

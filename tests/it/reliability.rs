@@ -5,12 +5,14 @@ use crate::common;
 use crate::suite::{config, run_built_by};
 
 use accelbench::geometry::triangle::Watertight;
-use accelbench::geometry::{Hit, Ray, TriangleKernelKind};
+use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::suite::SuiteResult;
-use accelbench::index::{BatchIndex, BuildError, Index, IndexInfo, IndexSpec, Stats, TraceIndex};
+use accelbench::index::{
+    BatchIndex, BuildError, HitQuery, Index, IndexInfo, IndexSpec, Stats, TraceIndex,
+};
 use accelbench::index::{build_index, build_index_on};
 use accelbench::scene::{Geometry, SceneGeometry, Triangles, generators};
-use common::drop_one::{NoParams, closest_skipping};
+use common::drop_one::{NoParams, query_skipping};
 
 /// Brute force that panics in every trace, or with `TIMED_ONLY` only in uncounted ones (the
 /// suite's timed passes; its counting passes count).
@@ -21,13 +23,10 @@ impl<const TIMED_ONLY: bool> Index for PanicsOnTrace<TIMED_ONLY> {
     fn build<G: Geometry>(_: &G, _: &Self::Params) -> Result<Self, BuildError> {
         Ok(PanicsOnTrace)
     }
-    fn closest_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> Option<Hit> {
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
         let uncounted = std::any::type_name::<S>().ends_with("NoStats");
         assert!(TIMED_ONLY && !uncounted, "injected trace fault");
-        closest_skipping(g, ray, s, None)
-    }
-    fn any_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> bool {
-        self.closest_hit(g, ray, s).is_some()
+        query_skipping::<Q, G, S>(g, r, s, None)
     }
     fn info(&self) -> IndexInfo {
         IndexInfo::default()

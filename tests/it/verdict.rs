@@ -6,12 +6,12 @@ use crate::common;
 use common::drop_one::NoParams;
 
 use accelbench::geometry::triangle::Exact;
-use accelbench::geometry::{Aabb, Hit, Ray, TriangleKernelKind};
+use accelbench::geometry::{Aabb, Ray, TriangleKernelKind};
 use accelbench::harness::suite::{IndexBuilder, Shard, SuiteConfig, SuiteResult, run_suite_with};
 use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{
-    BatchIndex, BuildError, Bvh4, Bvh8, Index, IndexInfo, IndexSpec, Stats, TraceIndex, TraceMode,
-    build_index, build_index_on,
+    BatchIndex, BuildError, Bvh4, Bvh8, HitQuery, Index, IndexInfo, IndexSpec, Stats, TraceIndex,
+    TraceMode, build_index, build_index_on,
 };
 use accelbench::rays::incoherent_rays;
 use accelbench::report::suite_report::{RunMeta, write_suite_report};
@@ -34,11 +34,8 @@ impl Index for Blind {
     fn build<G: Geometry>(_: &G, _: &NoParams) -> Result<Self, BuildError> {
         Ok(Blind)
     }
-    fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, _: &Ray, _: &mut S) -> Option<Hit> {
-        None
-    }
-    fn any_hit<G: Geometry, S: Stats>(&self, _: &G, _: &Ray, _: &mut S) -> bool {
-        false
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, _: &G, r: &Ray, _: &mut S) -> Q::Answer {
+        Q::answer(Q::start(r))
     }
     fn info(&self) -> IndexInfo {
         IndexInfo::default()

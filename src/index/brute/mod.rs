@@ -1,9 +1,9 @@
 //! Brute force: test every primitive. The reference every other index must match.
 
-use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::geometry::Ray;
 use crate::index::build_budget::per_primitive;
-use crate::index::kit::{prim_test, ray_queries};
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::kit::prim_test;
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
 
@@ -18,22 +18,6 @@ pub struct BruteForce {
 #[serde(deny_unknown_fields)]
 pub struct BruteParams {}
 
-/// Every primitive tested, in id order.
-#[inline]
-fn closest<G: Geometry, S: Stats>(b: &BruteForce, g: &G, r: &Ray, s: &mut S) -> Option<Hit> {
-    let mut best = ClosestHit::new(r.t_max);
-    for prim in 0..b.len {
-        prim_test::closest(&mut best, g, prim, r, s);
-    }
-    best.get()
-}
-
-/// Whether any primitive is hit, stopping at the first.
-#[inline]
-fn any<G: Geometry, S: Stats>(b: &BruteForce, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-    (0..b.len).any(|prim| prim_test::any(geom, prim, ray, stats))
-}
-
 impl Index for BruteForce {
     type Params = BruteParams;
 
@@ -46,7 +30,17 @@ impl Index for BruteForce {
         })
     }
 
-    ray_queries!(closest, any, |index| index);
+    /// Every primitive tested, in id order (an any-hit query stops at the first hit).
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        let mut found = Q::start(r);
+        for prim in 0..self.len {
+            if prim_test::test::<Q, G, S>(&mut found, g, prim, r, s) {
+                break;
+            }
+        }
+        Q::answer(found)
+    }
 
     /// Nothing per primitive: brute force stores only the count.
     fn estimated_build_bytes(prims: usize, _: &BruteParams) -> Option<usize> {

@@ -25,11 +25,11 @@ pub use build::MAX_DEPTH;
 use params::BuildConfig;
 pub use params::{BvhParams, Preset, SplitMethod};
 
-use crate::geometry::Aabb;
+use crate::geometry::{Aabb, Ray};
 use crate::index::kit::box_tree::node::{Child, Node};
 use crate::index::kit::box_tree::{leaves, tree, walk};
 use crate::index::kit::huge_pages::huge_page_vec;
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use prim_ref::PrimRef;
 use rayon::prelude::*;
@@ -62,7 +62,10 @@ impl Index for Bvh {
         Ok(bvh)
     }
 
-    walk::tree_queries!();
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        walk::query::<Q, _, _, _, _>(&self.tree(), g, r, s)
+    }
 
     /// About 200 B per primitive measured (soup, bunny, icosphere), with a margin.
     fn estimated_build_bytes(prims: usize, params: &BvhParams) -> Option<usize> {

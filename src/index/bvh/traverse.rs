@@ -41,13 +41,14 @@ impl BoxTree<STACK> for Tree<'_> {
     }
 
     #[inline(always)]
-    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Child, STACK>) -> Option<Child> {
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
         let node = &self.nodes[s.node as usize];
         let [a, b] = node.children;
         s.stats.box_tests(2);
-        match slab::hit_children::<SAFE>(node, s.ray, s.t_max).0 {
+        let (hit, enter) = slab::hit_children::<SAFE>(node, s.ray, s.t_max);
+        match hit {
             0b11 => {
-                s.stack.push(b);
+                s.stack.push((b, enter.y));
                 Some(a)
             }
             0b01 => Some(a),

@@ -25,8 +25,8 @@ mod build;
 use super::grid::{Dda, Layout, check_lambda, finite_bounds};
 use crate::geometry::Ray;
 use crate::index::build_budget::per_primitive;
-use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_queries};
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, query_cells};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use build::{Levels, NO_INNER, build_levels};
 use serde::{Deserialize, Serialize};
@@ -135,7 +135,10 @@ impl Index for Grid2 {
         })
     }
 
-    cell_walk_queries!();
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        query_cells::<Q, _, _, _>(self, g, r, s)
+    }
 
     /// About 70 B per primitive measured (soup, bunny, icosphere), with a margin; long thin
     /// primitives span more cells, and the fill checks the budget as it goes.

@@ -3,8 +3,8 @@
 //! tested at most once per ray ([`super::mailbox`]).
 
 use super::mailbox::with_mailbox;
-use crate::geometry::{ClosestHit, Hit, Ray};
-use crate::index::Stats;
+use crate::geometry::Ray;
+use crate::index::{HitQuery, Stats};
 use crate::scene::Geometry;
 
 /// A structure that hands a ray's cells (grid cells, octree leaves) to a visitor front to back.
@@ -51,62 +51,31 @@ fn hit_within<G: Geometry, S: Stats>(
     geom.intersect(prim, ray, cutoff)
 }
 
-/// The closest hit along `walk`: each primitive tested at most once (the mailbox), through the
-/// shared kernel ([`Geometry::intersect`], after its bounds: [`hit_within`]), ties at equal `t`
-/// to the lowest id ([`ClosestHit::offer`]). A primitive rejected once stays rejected, because
-/// the best `t` only shrinks.
+/// The answer to query `Q` along `walk`: each primitive tested at most once (the mailbox),
+/// through the shared kernel ([`Geometry::intersect`], after its bounds: [`hit_within`]); a
+/// closest hit keeps ties at equal `t` to the lowest id ([`crate::geometry::ClosestHit::offer`]),
+/// an any-hit query stops at its first hit (the cutoff `-inf`). A primitive rejected once stays
+/// rejected, because the reach only shrinks.
 #[inline]
-pub fn closest_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
+pub fn query_cells<Q: HitQuery, W: CellWalk, G: Geometry, S: Stats>(
     walk: &W,
     geom: &G,
     ray: &Ray,
     stats: &mut S,
-) -> Option<Hit> {
+) -> Q::Answer {
     with_mailbox(geom.len(), |mb| {
-        let mut best = ClosestHit::new(ray.t_max);
+        let mut found = Q::start(ray);
         walk.for_each_cell(ray, stats, |prims, stats| {
             for &prim in prims {
                 if mb.first_visit(prim)
-                    && let Some(t) = hit_within(geom, prim, ray, best.t(), stats)
+                    && let Some(t) = hit_within(geom, prim, ray, Q::reach(&found, ray), stats)
+                    && Q::hit(&mut found, t, prim)
                 {
-                    best.offer(t, prim);
+                    return f32::NEG_INFINITY;
                 }
             }
-            best.t()
+            Q::reach(&found, ray)
         });
-        best.get()
+        Q::answer(found)
     })
 }
-
-/// Whether any primitive along `walk` is hit within `[t_min, t_max]` (stops at the first).
-#[inline]
-pub fn any_hit_in_cells<W: CellWalk, G: Geometry, S: Stats>(
-    walk: &W,
-    geom: &G,
-    ray: &Ray,
-    stats: &mut S,
-) -> bool {
-    with_mailbox(geom.len(), |mb| {
-        let mut found = false;
-        walk.for_each_cell(ray, stats, |prims, stats| {
-            found = prims.iter().any(|&p| {
-                mb.first_visit(p) && hit_within(geom, p, ray, ray.t_max, stats).is_some()
-            });
-            if found { f32::NEG_INFINITY } else { ray.t_max }
-        });
-        found
-    })
-}
-
-/// The `closest_hit` and `any_hit` methods of an [`Index`](crate::index::Index) impl for a type
-/// that is a [`CellWalk`]: the shared mailboxed queries above.
-macro_rules! cell_walk_queries {
-    () => {
-        $crate::index::kit::ray_queries!(
-            $crate::index::kit::cell_walk::closest_hit_in_cells,
-            $crate::index::kit::cell_walk::any_hit_in_cells,
-            |index| index
-        );
-    };
-}
-pub(crate) use cell_walk_queries;

@@ -1,31 +1,23 @@
 //! One primitive tested for a query, counted: the step every index's leaves, cells and brute
 //! force share (the kernel through [`Geometry::intersect`], one [`Stats::prim_test`]).
 
-use crate::geometry::{ClosestHit, Ray};
-use crate::index::Stats;
+use crate::geometry::Ray;
+use crate::index::{HitQuery, Stats};
 use crate::scene::Geometry;
 
-/// Tests `prim` against `[ray.t_min, best t]` and offers a hit to `best`; `true` when it was
-/// hit (and offered).
+/// Tests `prim` against `[ray.t_min, Q::reach(found)]` and hands a hit to
+/// [`HitQuery::hit`]; `true` when the walk is over (an any-hit query's first hit).
 #[inline(always)]
-pub fn closest<G: Geometry, S: Stats>(
-    best: &mut ClosestHit,
+pub fn test<Q: HitQuery, G: Geometry, S: Stats>(
+    found: &mut Q::Found,
     geom: &G,
     prim: u32,
     ray: &Ray,
     stats: &mut S,
 ) -> bool {
     stats.prim_test();
-    let hit = geom.intersect(prim, ray, best.t());
-    if let Some(t) = hit {
-        best.offer(t, prim);
+    match geom.intersect(prim, ray, Q::reach(found, ray)) {
+        Some(t) => Q::hit(found, t, prim),
+        None => false,
     }
-    hit.is_some()
-}
-
-/// Whether `prim` is hit in `[ray.t_min, ray.t_max]`.
-#[inline(always)]
-pub fn any<G: Geometry, S: Stats>(geom: &G, prim: u32, ray: &Ray, stats: &mut S) -> bool {
-    stats.prim_test();
-    geom.intersect(prim, ray, ray.t_max).is_some()
 }

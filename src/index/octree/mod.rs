@@ -51,8 +51,8 @@ pub use tree::OctreeTree;
 
 use crate::geometry::Ray;
 use crate::index::build_budget::per_primitive;
-use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_queries};
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, query_cells};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use std::marker::PhantomData;
 
@@ -116,7 +116,10 @@ impl<O: LeafOrder> Index for Octree<O> {
         })
     }
 
-    cell_walk_queries!();
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        query_cells::<Q, _, _, _>(self, g, r, s)
+    }
 
     /// About 160 B per primitive measured (soup, bunny, icosphere), with a margin; the build
     /// checks the budget at every node too.

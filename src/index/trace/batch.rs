@@ -1,10 +1,10 @@
 //! How an index traces several rays at a time ([`BatchIndex`]): its own batch technique
 //! (`stream`) and packets of neighbouring rays, by default one [`Index`] query per ray
-//! ([`each_closest`], [`each_any`]). A trait apart from [`Index`], so the query trait imports
+//! ([`each`]). A trait apart from [`Index`], so the query trait imports
 //! nothing of the tracing machinery.
 
 use crate::geometry::{Hit, Ray};
-use crate::index::{Index, Stats};
+use crate::index::{AnyHit, Closest, HitQuery, Index, Stats};
 use crate::scene::Geometry;
 
 /// An index's batch techniques. Every index implements it (`impl BatchIndex for X {}` keeps
@@ -34,7 +34,7 @@ pub trait BatchIndex: Index {
         out: &mut [Option<Hit>],
         stats: &mut [S],
     ) {
-        each_closest(self, geom, rays, out, stats);
+        each::<Closest, _, _, _>(self, geom, rays, out, stats);
     }
 
     /// Any-hit results of a chunk, as [`BatchIndex::closest_hits_stream`].
@@ -46,7 +46,7 @@ pub trait BatchIndex: Index {
         out: &mut [bool],
         stats: &mut [S],
     ) {
-        each_any(self, geom, rays, out, stats);
+        each::<AnyHit, _, _, _>(self, geom, rays, out, stats);
     }
 
     /// Closest hits of a packet of neighbouring rays (at most [`super::MAX_PACKET`]; `out` and `stats`
@@ -59,7 +59,7 @@ pub trait BatchIndex: Index {
         out: &mut [Option<Hit>],
         stats: &mut [S],
     ) {
-        each_closest(self, geom, rays, out, stats);
+        each::<Closest, _, _, _>(self, geom, rays, out, stats);
     }
 
     /// Any-hit results of a packet, as [`BatchIndex::closest_hits_packet`].
@@ -71,35 +71,21 @@ pub trait BatchIndex: Index {
         out: &mut [bool],
         stats: &mut [S],
     ) {
-        each_any(self, geom, rays, out, stats);
+        each::<AnyHit, _, _, _>(self, geom, rays, out, stats);
     }
 }
 
-/// Closest hits of `rays`, one [`Index::closest_hit`] per ray (`out` and `stats` as long as
+/// Answers to query `Q` for `rays`, one [`Index::query`] per ray (`out` and `stats` as long as
 /// `rays`).
 #[inline]
-pub fn each_closest<I: Index, G: Geometry, S: Stats>(
+pub fn each<Q: HitQuery, I: Index, G: Geometry, S: Stats>(
     index: &I,
     geom: &G,
     rays: &[Ray],
-    out: &mut [Option<Hit>],
+    out: &mut [Q::Answer],
     stats: &mut [S],
 ) {
     for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-        *o = index.closest_hit(geom, r, s);
-    }
-}
-
-/// Any-hit results of `rays`, one [`Index::any_hit`] per ray.
-#[inline]
-pub fn each_any<I: Index, G: Geometry, S: Stats>(
-    index: &I,
-    geom: &G,
-    rays: &[Ray],
-    out: &mut [bool],
-    stats: &mut [S],
-) {
-    for ((r, o), s) in rays.iter().zip(out.iter_mut()).zip(stats.iter_mut()) {
-        *o = index.any_hit(geom, r, s);
+        *o = index.query::<Q, G, S>(geom, r, s);
     }
 }

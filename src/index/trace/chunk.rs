@@ -5,7 +5,7 @@
 //! Rays of a chunk are consecutive in the batch (image order for camera sets), and each chunk
 //! starts with an empty last-hit cache, so results never depend on the thread count.
 
-use super::batch::BatchIndex;
+use super::batch::{BatchIndex, each};
 use super::last_hit::KernelRange;
 use super::mode::{MAX_PACKET, TraceMode};
 use super::query::Query;
@@ -24,7 +24,8 @@ pub fn trace_chunk<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
     stats: &mut [S],
 ) {
     match mode {
-        TraceMode::Single => Q::each(index, geom, rays, out, stats),
+        // A chunk of a reordered batch is already in coherence order (see `super::reorder`).
+        TraceMode::Single | TraceMode::Reorder => each::<Q, _, _, _>(index, geom, rays, out, stats),
         TraceMode::Stream => Q::batch::<false, _, _, _>(index, geom, rays, out, stats),
         TraceMode::LastHit => {
             let mut range = KernelRange::new(geom.clone());

@@ -164,7 +164,7 @@ mod tests {
     use super::*;
     use crate::geometry::Triangle;
     use crate::geometry::triangle::Exact;
-    use crate::index::{BuildError, IndexInfo, NoStats};
+    use crate::index::{BuildError, HitQuery, IndexInfo, NoStats};
     use crate::scene::Triangles;
     use glam::{Vec3, Vec3A};
 
@@ -176,11 +176,13 @@ mod tests {
         fn build<G: Geometry>(_: &G, _: &()) -> Result<Self, BuildError> {
             Ok(OwnTest)
         }
-        fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, _: &Ray, _: &mut S) -> Option<Hit> {
-            None
-        }
-        fn any_hit<G: Geometry, S: Stats>(&self, _: &G, _: &Ray, _: &mut S) -> bool {
-            true
+        fn query<Q: HitQuery, G: Geometry, S: Stats>(
+            &self,
+            _: &G,
+            _: &Ray,
+            _: &mut S,
+        ) -> Q::Answer {
+            Q::select(|| None, || true)
         }
         fn info(&self) -> IndexInfo {
             IndexInfo::default()

@@ -9,7 +9,9 @@ pub const MAX_PACKET: usize = 8;
 /// What a mode may do: [`TraceMode::Single`] and [`TraceMode::LastHit`] answer one query at a
 /// time (one ray's walk finishes before the next ray's starts; nothing is shared between rays
 /// but the last-hit cache); [`TraceMode::Stream`] and [`TraceMode::Packets`] may trace several
-/// rays of a chunk at once (interleaved or lockstep walks, SIMD across rays).
+/// rays of a chunk at once (interleaved or lockstep walks, SIMD across rays);
+/// [`TraceMode::Reorder`] may change the order of the batch's rays, and answers each one query at
+/// a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TraceMode {
@@ -22,6 +24,9 @@ pub enum TraceMode {
     LastHit,
     /// Packets of this many consecutive rays (4 or 8).
     Packets(usize),
+    /// The batch sorted by a coherence key, then one query at a time in that order
+    /// ([`super::reorder`]); the sort is part of the mode's time.
+    Reorder,
 }
 
 /// The two families the verdict compares within: one query at a time, or a batch.
@@ -29,7 +34,7 @@ pub enum TraceMode {
 pub enum ModeFamily {
     /// `single` and `last-hit`.
     OneAtATime,
-    /// `stream` and the packet modes.
+    /// `stream`, the packet modes and `reorder`.
     Batch,
 }
 
@@ -52,10 +57,12 @@ impl TraceMode {
             TraceMode::Stream => "stream".into(),
             TraceMode::LastHit => "last-hit".into(),
             TraceMode::Packets(n) => format!("packets{n}"),
+            TraceMode::Reorder => "reorder".into(),
         }
     }
 
-    /// A mode from its label (`single`, `stream`, `last-hit`, `packets4`, `packets8`).
+    /// A mode from its label (`single`, `stream`, `last-hit`, `packets4`, `packets8`,
+    /// `reorder`).
     pub fn parse(s: &str) -> Result<TraceMode, String> {
         match s.trim() {
             "single" => Ok(TraceMode::Single),
@@ -63,8 +70,9 @@ impl TraceMode {
             "last-hit" => Ok(TraceMode::LastHit),
             "packets4" => Ok(TraceMode::Packets(4)),
             "packets8" => Ok(TraceMode::Packets(8)),
+            "reorder" => Ok(TraceMode::Reorder),
             other => Err(format!(
-                "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, packets8"
+                "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, packets8, reorder"
             )),
         }
     }
@@ -73,7 +81,7 @@ impl TraceMode {
     pub fn family(self) -> ModeFamily {
         match self {
             TraceMode::Single | TraceMode::LastHit => ModeFamily::OneAtATime,
-            TraceMode::Stream | TraceMode::Packets(_) => ModeFamily::Batch,
+            TraceMode::Stream | TraceMode::Packets(_) | TraceMode::Reorder => ModeFamily::Batch,
         }
     }
 }

@@ -14,7 +14,8 @@ use rayon::prelude::*;
 const CHUNK: usize = 64;
 
 /// Answers query `Q` for a batch traced in `mode`, in parallel chunks of [`CHUNK`] rays, with
-/// per-ray counters (reset first) when `counters` is given.
+/// per-ray counters (reset first) when `counters` is given. The rays stay in their order
+/// ([`TraceMode::Reorder`] is [`super::reorder`], which calls this with the sorted batch).
 pub fn trace_in_parallel<Q: Query, I: BatchIndex, G: Geometry>(
     index: &I,
     geom: &G,

@@ -26,7 +26,7 @@ pub trait TraceIndex: Send + Sync {
     fn traces_in(&self, mode: TraceMode) -> bool {
         match mode {
             TraceMode::Stream => self.has_stream(),
-            TraceMode::Single | TraceMode::LastHit => self.has_single(),
+            TraceMode::Single | TraceMode::LastHit | TraceMode::Reorder => self.has_single(),
             TraceMode::Packets(_) => true,
         }
     }

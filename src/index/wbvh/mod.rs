@@ -16,13 +16,13 @@ mod packet;
 mod refit;
 mod traverse;
 
-use crate::geometry::Aabb;
+use crate::geometry::{Aabb, Ray};
 use crate::index::bvh::{Bvh, BvhParams};
 use crate::index::kit::box_tree::leaves::{BLOCK_LANES, LeafStore};
 use crate::index::kit::box_tree::node::Child;
 use crate::index::kit::box_tree::{stream, tree, walk};
 use crate::index::kit::huge_pages::huge_page_vec;
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use node::{WideNode, collapse};
 
@@ -93,7 +93,10 @@ impl<const C: usize> Index for WideBvh<C> {
         })
     }
 
-    walk::tree_queries!();
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        walk::query::<Q, _, _, _, _>(&self.tree(), g, r, s)
+    }
 
     const REFIT: bool = true;
 

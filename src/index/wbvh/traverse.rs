@@ -131,18 +131,17 @@ impl<const C: usize> BoxTree<STACK> for Tree<'_, C> {
     }
 
     #[inline(always)]
-    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Child, STACK>) -> Option<Child> {
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
         let node = self.node(s.node);
         s.stats.box_tests(node.valid().count_ones());
-        let (mut mask, _) = node.hit::<SAFE>(s.ray, s.t_max);
+        let (mut mask, enter) = node.hit::<SAFE>(s.ray, s.t_max);
         if mask == 0 {
             return None;
         }
         while mask & (mask - 1) != 0 {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            self.prefetch(node.child(i));
-            s.stack.push(node.child(i));
+            self.push(node.child(i), enter[i], s.stack);
         }
         let i = mask.trailing_zeros() as usize;
         Some(node.child(i))

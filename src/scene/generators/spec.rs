@@ -5,9 +5,9 @@ use super::{DEFAULT_SEED, DEFAULT_SIZE, GENERATOR_NAMES, generate};
 use crate::scene::{Scene, SceneError};
 use std::fmt;
 
-/// The largest `n` a generator accepts (about 1.6 GB of triangles); larger requests are refused
-/// instead of exhausting memory.
-pub const MAX_GENERATED: usize = 1 << 25;
+/// The largest `n` a generator accepts (about 6.4 GB of triangles at 48 bytes each); larger
+/// requests are refused instead of exhausting memory.
+pub const MAX_GENERATED: usize = 1 << 27;
 
 /// A known generator name with a validated size `1..=MAX_GENERATED` and a seed.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -20,7 +20,7 @@ pub fn load_scene(arg: &str) -> Result<Scene, SceneError> {
         _ => generators::builtin(arg).unwrap_or_else(|| {
             Err(SceneError::UnknownScene(
                 arg.to_owned(),
-                generators::BUILTIN_NAMES.join(", "),
+                generators::GENERATOR_NAMES.join(", "),
             ))
         }),
     }

@@ -5,12 +5,14 @@
 //! - `twist`: the scene turns about the vertical axis through its centre, by an angle that grows
 //!   with height and with time ([`twist`]).
 //! - `wave`: a travelling wave lifts and lowers the scene vertically ([`wave`]).
+//! - `cloth`: the scene falls like a sheet and drapes over a ball ([`cloth`]).
 //!
 //! A motion is a pure function of the rest pose and the time `t` in `[0, 1]` (first to last
 //! frame): the same spec and frame give the same primitives, bit for bit. Triangle corners and
 //! sphere centres move; spheres keep their radius, and the other shapes (boxes, polygons, ...)
 //! stay where they are.
 
+pub mod cloth;
 mod spec;
 pub mod twist;
 pub mod wave;

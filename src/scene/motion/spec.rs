@@ -1,6 +1,7 @@
 //! Motion specs on the command line: `twist`, `twist:turns=0.5`, `wave:amplitude=0.02,waves=2`.
 
 use super::Motion;
+use super::cloth::Cloth;
 use super::twist::Twist;
 use super::wave::Wave;
 use std::fmt;
@@ -11,10 +12,11 @@ use std::str::FromStr;
 pub enum MotionSpec {
     Twist(Twist),
     Wave(Wave),
+    Cloth(Cloth),
 }
 
 /// The motions, with their parameters and defaults, for messages.
-const KNOWN: &str = "twist[:turns=0.25], wave[:amplitude=0.02,waves=2]";
+const KNOWN: &str = "twist[:turns=0.25], wave[:amplitude=0.02,waves=2], cloth[:drop=0.5,ball=0.3]";
 
 impl MotionSpec {
     /// The motion itself.
@@ -22,6 +24,7 @@ impl MotionSpec {
         match self {
             MotionSpec::Twist(m) => m,
             MotionSpec::Wave(m) => m,
+            MotionSpec::Cloth(m) => m,
         }
     }
 }
@@ -31,6 +34,7 @@ impl fmt::Display for MotionSpec {
         match self {
             MotionSpec::Twist(m) => write!(f, "twist:turns={}", m.turns),
             MotionSpec::Wave(m) => write!(f, "wave:amplitude={},waves={}", m.amplitude, m.waves),
+            MotionSpec::Cloth(m) => write!(f, "cloth:drop={},ball={}", m.drop, m.ball),
         }
     }
 }
@@ -45,6 +49,7 @@ impl FromStr for MotionSpec {
         let (keys, limits): (&[&str], &[(f32, f32)]) = match name.trim() {
             "twist" => (&["turns"], &[(-16.0, 16.0)]),
             "wave" => (&["amplitude", "waves"], &[(0.0, 1.0), (0.0, 64.0)]),
+            "cloth" => (&["drop", "ball"], &[(0.0, 4.0), (0.0, 1.0)]),
             other => return Err(format!("unknown motion '{other}': choose one of {KNOWN}")),
         };
         let mut values: Vec<Option<f32>> = vec![None; keys.len()];
@@ -82,9 +87,13 @@ impl FromStr for MotionSpec {
             "twist" => MotionSpec::Twist(Twist {
                 turns: values[0].unwrap_or(0.25),
             }),
-            _ => MotionSpec::Wave(Wave {
+            "wave" => MotionSpec::Wave(Wave {
                 amplitude: values[0].unwrap_or(0.02),
                 waves: values[1].unwrap_or(2.0),
+            }),
+            _ => MotionSpec::Cloth(Cloth {
+                drop: values[0].unwrap_or(0.5),
+                ball: values[1].unwrap_or(0.3),
             }),
         })
     }
@@ -107,6 +116,15 @@ mod tests {
             })
         );
         assert_eq!(w.to_string().parse::<MotionSpec>().unwrap(), w);
+        let c: MotionSpec = "cloth:ball=0.25".parse().unwrap();
+        assert_eq!(
+            c,
+            MotionSpec::Cloth(Cloth {
+                drop: 0.5,
+                ball: 0.25
+            })
+        );
+        assert_eq!(c.to_string().parse::<MotionSpec>().unwrap(), c);
         for (bad, says) in [
             ("spin", "unknown motion 'spin'"),
             ("twist:angle=3", "has no parameter 'angle'"),
@@ -114,6 +132,7 @@ mod tests {
             ("twist:turns=1,turns=2", "given twice"),
             ("twist:turns=nan", "use a number from"),
             ("wave:amplitude=2", "use a number from 0 to 1"),
+            ("cloth:drop=5", "use a number from 0 to 4"),
         ] {
             let e = bad.parse::<MotionSpec>().unwrap_err();
             assert!(e.contains(says), "{bad}: {e}");

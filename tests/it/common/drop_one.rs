@@ -1,7 +1,8 @@
 //! A faulty index for tests of the verification: brute force that never reports one primitive.
 
-use accelbench::geometry::{Hit, Ray};
-use accelbench::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use accelbench::geometry::Ray;
+use accelbench::index::kit::prim_test;
+use accelbench::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use accelbench::scene::Geometry;
 
 #[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
@@ -16,35 +17,29 @@ impl Index for DropOne {
     fn build<G: Geometry>(_: &G, _: &Self::Params) -> Result<Self, BuildError> {
         Ok(DropOne)
     }
-    fn closest_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> Option<Hit> {
-        closest_skipping(g, ray, s, Some(DROPPED))
-    }
-    fn any_hit<G: Geometry, S: Stats>(&self, g: &G, ray: &Ray, s: &mut S) -> bool {
-        self.closest_hit(g, ray, s).is_some()
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        query_skipping::<Q, G, S>(g, r, s, Some(DROPPED))
     }
     fn info(&self) -> IndexInfo {
         IndexInfo::default()
     }
 }
 
-/// Brute force's closest hit of `ray` over every primitive but `skip`, counting each test.
-pub fn closest_skipping<G: Geometry, S: Stats>(
+/// Brute force's answer to query `Q` for `ray` over every primitive but `skip`, counting each
+/// test.
+pub fn query_skipping<Q: HitQuery, G: Geometry, S: Stats>(
     g: &G,
     ray: &Ray,
     s: &mut S,
     skip: Option<u32>,
-) -> Option<Hit> {
-    let mut best: Option<Hit> = None;
+) -> Q::Answer {
+    let mut found = Q::start(ray);
     for prim in (0..g.len() as u32).filter(|&p| Some(p) != skip) {
-        s.prim_test();
-        if let Some(t) = g.intersect(prim, ray, ray.t_max) {
-            let h = Hit { t, prim };
-            if best.is_none_or(|b| h.is_closer_than(&b)) {
-                best = Some(h);
-            }
+        if prim_test::test::<Q, G, S>(&mut found, g, prim, ray, s) {
+            break;
         }
     }
-    best
+    Q::answer(found)
 }
 
 impl BatchIndex for DropOne {}

@@ -9,15 +9,16 @@
 //!   same hits and `t` bits as `intersect` per primitive). A leaf reads one contiguous block of
 //!   memory instead of following ids into the scene.
 //!
-//! Either way every hit is offered to the closest-hit record, which keeps the smallest `t` and
-//! at equal `t` the lowest id, so the order of the tests within a leaf does not matter.
+//! Either way every hit is handed to the query ([`HitQuery::hit`]); a closest-hit record keeps
+//! the smallest `t` and at equal `t` the lowest id, so the order of the tests within a leaf does
+//! not matter.
 
 use super::node::Child;
 use crate::geometry::triangle::lanes::TriangleBlock;
-use crate::geometry::{ClosestHit, Ray, Triangle};
-use crate::index::Stats;
+use crate::geometry::{Ray, Triangle};
 use crate::index::kit::huge_pages::huge_page_vec;
 use crate::index::kit::prim_test;
+use crate::index::{HitQuery, Stats};
 use crate::scene::Geometry;
 
 /// Triangles per [`TriangleBlock`]: a leaf of up to this many costs one lane-wise test.
@@ -107,57 +108,41 @@ impl Leaves<'_> {
         }
     }
 
-    /// Tests the leaf's primitives against `[ray.t_min, best t]`, offering every hit to `best`.
+    /// Tests the leaf's primitives against `[ray.t_min, Q::reach]`, handing every hit to
+    /// `found` ([`HitQuery::hit`]); `true` when the walk is over (an any-hit query's first
+    /// hit).
     #[inline(always)]
-    pub fn closest<G: Geometry, S: Stats>(
+    pub fn query<Q: HitQuery, G: Geometry, S: Stats>(
         self,
         leaf: Child,
         geom: &G,
         ray: &Ray,
-        best: &mut ClosestHit,
+        found: &mut Q::Found,
         stats: &mut S,
-    ) {
+    ) -> bool {
         let (first, count) = (leaf.index as usize, leaf.count as usize);
         match self {
             Leaves::Ids(ids) => {
                 for &prim in &ids[first..first + count] {
-                    prim_test::closest(best, geom, prim, ray, stats);
+                    if prim_test::test::<Q, G, S>(found, geom, prim, ray, stats) {
+                        return true;
+                    }
                 }
             }
             Leaves::Blocks(blocks) => {
                 (0..count).for_each(|_| stats.prim_test());
                 for block in &blocks[first..first + count.div_ceil(BLOCK_LANES as usize)] {
-                    let (mut hit, t) = geom.intersect_block(block, ray, best.t());
+                    let (mut hit, t) = geom.intersect_block(block, ray, Q::reach(found, ray));
                     while hit != 0 {
                         let i = hit.trailing_zeros() as usize;
                         hit &= hit - 1;
-                        best.offer(t[i], block.ids[i]);
+                        if Q::hit(found, t[i], block.ids[i]) {
+                            return true;
+                        }
                     }
                 }
             }
         }
-    }
-
-    /// Whether any of the leaf's primitives is hit in `[ray.t_min, ray.t_max]`.
-    #[inline(always)]
-    pub fn any<G: Geometry, S: Stats>(
-        self,
-        leaf: Child,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> bool {
-        let (first, count) = (leaf.index as usize, leaf.count as usize);
-        match self {
-            Leaves::Ids(ids) => ids[first..first + count]
-                .iter()
-                .any(|&prim| prim_test::any(geom, prim, ray, stats)),
-            Leaves::Blocks(blocks) => {
-                (0..count).for_each(|_| stats.prim_test());
-                blocks[first..first + count.div_ceil(BLOCK_LANES as usize)]
-                    .iter()
-                    .any(|b| geom.intersect_block(b, ray, ray.t_max).0 != 0)
-            }
-        }
+        false
     }
 }

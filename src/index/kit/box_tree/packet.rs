@@ -31,7 +31,7 @@ use super::packet_slab::{PacketRays, hit_box};
 use super::tree::{Rooted, Top};
 use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
 use crate::index::kit::stack::Stack;
-use crate::index::{MAX_PACKET, Stats};
+use crate::index::{AnyHit, Closest, MAX_PACKET, Stats};
 use crate::scene::Geometry;
 use glam::Vec4;
 
@@ -248,7 +248,7 @@ fn closest<const W: usize, const N: usize, T, G, S, V>(
         if at.is_leaf() {
             for k in bits(active) {
                 top.leaves
-                    .closest(at, geom, &rays[k], &mut best[k], &mut stats[k]);
+                    .query::<Closest, G, S>(at, geom, &rays[k], &mut best[k], &mut stats[k]);
                 best_t[k] = best[k].t();
             }
         } else {
@@ -329,7 +329,13 @@ fn any<const W: usize, const N: usize, T, G, S, V>(
             count(active, stats, S::node_visit);
             if at.is_leaf() {
                 for k in bits(active) {
-                    if top.leaves.any(at, geom, &rays[k], &mut stats[k]) {
+                    if top.leaves.query::<AnyHit, G, S>(
+                        at,
+                        geom,
+                        &rays[k],
+                        &mut false,
+                        &mut stats[k],
+                    ) {
                         out[k] = true;
                         done |= 1 << k;
                     }

@@ -78,8 +78,8 @@ pub fn closest_hits_lockstep<const N: usize, T: BoxTree<N>, G: Geometry, S: Stat
         while b_live {
             b_live = b.step::<false, T, G, S>(tree, geom, sb);
         }
-        out[i] = a.best.get();
-        out[i + 1] = b.best.get();
+        out[i] = a.answer();
+        out[i + 1] = b.answer();
     }
     if rays.len() % 2 == 1 {
         let i = rays.len() - 1;
@@ -137,7 +137,7 @@ impl<'r, const N: usize> ClosestWalk<'r, '_, N> {
         stats: &mut [S],
     ) {
         if !self.step::<false, T, G, S>(tree, geom, &mut stats[*id]) {
-            out[*id] = self.best.get();
+            out[*id] = self.answer();
             *id = feed.start(tree, geom, out, stats);
             if *id != Feed::NONE {
                 self.restart(tree.top().root, &feed.rays[*id]);
@@ -184,7 +184,7 @@ pub fn closest_hits_interleaved<const N: usize, T: BoxTree<N>, G: Geometry, S: S
     for (walk, i) in [(&mut a, *ia), (&mut b, *ib), (&mut c, *ic)] {
         if i != Feed::NONE {
             while walk.step::<false, T, G, S>(tree, geom, &mut stats[i]) {}
-            out[i] = walk.best.get();
+            out[i] = walk.answer();
         }
     }
 }

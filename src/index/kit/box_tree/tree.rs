@@ -57,6 +57,7 @@ pub trait BoxTree<const N: usize>: Rooted {
     /// Closest-hit step: pushes the hit children but the nearest with their entries, farthest
     /// first, and returns the nearest; `None` when no child is hit.
     fn closest<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, N>) -> Option<Child>;
-    /// Any-hit step: pushes the hit children but one and returns that one.
-    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Child, N>) -> Option<Child>;
+    /// Any-hit step: pushes the hit children but one with their entries, in no particular
+    /// order, and returns that one.
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, N>) -> Option<Child>;
 }

@@ -4,10 +4,10 @@
 
 use super::walk::{self, SplitNode};
 use super::{MAX_TREE_DEPTH, default_max_depth, scene_bounds, scene_pad};
-use crate::geometry::{Aabb, Hit, Ray};
+use crate::geometry::{Aabb, Ray};
 use crate::index::build_budget::per_primitive;
 use crate::index::kit::huge_pages::huge_page_vec;
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -126,27 +126,12 @@ impl<N: Partition> Index for NearFarIndex<N> {
     }
 
     #[inline]
-    fn closest_hit<G: Geometry, S: Stats>(
-        &self,
-        geom: &G,
-        ray: &Ray,
-        stats: &mut S,
-    ) -> Option<Hit> {
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
         let tree = self.tree();
         if self.mailbox {
-            walk::closest_hit::<true, _, _, _>(tree, geom, ray, stats)
+            walk::query::<Q, true, _, _, _>(tree, g, r, s)
         } else {
-            walk::closest_hit::<false, _, _, _>(tree, geom, ray, stats)
-        }
-    }
-
-    #[inline]
-    fn any_hit<G: Geometry, S: Stats>(&self, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-        let tree = self.tree();
-        if self.mailbox {
-            walk::any_hit::<true, _, _, _>(tree, geom, ray, stats)
-        } else {
-            walk::any_hit::<false, _, _, _>(tree, geom, ray, stats)
+            walk::query::<Q, false, _, _, _>(tree, g, r, s)
         }
     }
 

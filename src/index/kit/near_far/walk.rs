@@ -17,11 +17,12 @@
 //! closest hit (ties go to the lowest id either way).
 
 use super::MAX_TREE_DEPTH;
-use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
-use crate::index::Stats;
+use crate::geometry::{Aabb, Ray};
 use crate::index::kit::mailbox::{Mailbox, with_mailbox};
 use crate::index::kit::prefetch::prefetch;
+use crate::index::kit::prim_test;
 use crate::index::kit::stack::Stack;
+use crate::index::{HitQuery, Stats};
 use crate::scene::Geometry;
 
 /// What a node tells the walk.
@@ -162,27 +163,6 @@ fn min(a: f32, b: f32) -> f32 {
     if b < a { b } else { a }
 }
 
-/// Tests the leaf's primitives (with `MAILBOX`, those not yet tested for this ray), keeping the
-/// closest hit in `best`.
-#[inline(always)]
-fn closest_in_leaf<const MAILBOX: bool, G: Geometry, S: Stats>(
-    geom: &G,
-    ray: &Ray,
-    prims: &[u32],
-    mb: &mut Mailbox,
-    best: &mut ClosestHit,
-    stats: &mut S,
-) {
-    for &p in prims {
-        if !MAILBOX || mb.first_visit(p) {
-            stats.prim_test();
-            if let Some(t) = geom.intersect(p, ray, best.t()) {
-                best.offer(t, p);
-            }
-        }
-    }
-}
-
 /// Runs `f` with this thread's mailbox when `MAILBOX`, else with an empty one it never touches.
 #[inline(always)]
 fn with_dedup<const MAILBOX: bool, R>(len: usize, f: impl FnOnce(&mut Mailbox) -> R) -> R {
@@ -193,58 +173,33 @@ fn with_dedup<const MAILBOX: bool, R>(len: usize, f: impl FnOnce(&mut Mailbox) -
     }
 }
 
-/// The closest hit by near/far traversal (see the module doc of [`super`] for why it matches
-/// brute force); `MAILBOX`: each primitive tested at most once.
+/// The answer to query `Q` by near/far traversal (see the module doc of [`super`] for why a
+/// closest hit matches brute force); `MAILBOX`: each primitive tested at most once. A leaf's
+/// primitives are tested against `[t_min, Q::reach]`; an any-hit query stops at its first hit.
 #[inline]
-pub(super) fn closest_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
+pub(super) fn query<Q: HitQuery, const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
     tree: Tree<'_, N>,
     geom: &G,
     ray: &Ray,
     stats: &mut S,
-) -> Option<Hit> {
+) -> Q::Answer {
     with_dedup::<MAILBOX, _>(geom.len(), |mb| {
-        let best = std::cell::Cell::new(ClosestHit::new(ray.t_max));
+        let found = std::cell::Cell::new(Q::start(ray));
         walk(
             tree,
             ray,
             stats,
             |prims, stats| {
-                let mut b = best.get();
-                closest_in_leaf::<MAILBOX, _, _>(geom, ray, prims, mb, &mut b, stats);
-                best.set(b);
-                false
-            },
-            || best.get().t(),
-        );
-        best.get().get()
-    })
-}
-
-/// Whether any primitive is hit (stops at the first).
-#[inline]
-pub(super) fn any_hit<const MAILBOX: bool, N: SplitNode, G: Geometry, S: Stats>(
-    tree: Tree<'_, N>,
-    geom: &G,
-    ray: &Ray,
-    stats: &mut S,
-) -> bool {
-    with_dedup::<MAILBOX, _>(geom.len(), |mb| {
-        let mut found = false;
-        walk(
-            tree,
-            ray,
-            stats,
-            |prims, stats| {
-                found = prims.iter().any(|&p| {
-                    (!MAILBOX || mb.first_visit(p)) && {
-                        stats.prim_test();
-                        geom.intersect(p, ray, ray.t_max).is_some()
-                    }
+                let mut f = found.get();
+                let over = prims.iter().any(|&p| {
+                    (!MAILBOX || mb.first_visit(p))
+                        && prim_test::test::<Q, G, S>(&mut f, geom, p, ray, stats)
                 });
-                found
+                found.set(f);
+                over
             },
-            || ray.t_max,
+            || Q::reach(&found.get(), ray),
         );
-        found
+        Q::answer(found.get())
     })
 }

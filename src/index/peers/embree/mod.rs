@@ -20,7 +20,7 @@ mod stream;
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::{per_primitive, stopped};
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, NoStats, Stats};
 use crate::scene::Geometry;
 use device::MonitoredDevice;
 use embree3::{
@@ -163,6 +163,16 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
 
     fn refuses(ray: &Ray) -> Option<&'static str> {
         rtc_ray::refusal(ray)
+    }
+
+    /// Embree counts nothing: its two calls, [`Index::closest_hit`] and [`Index::any_hit`]
+    /// below, ignore the counters.
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, _: &mut S) -> Q::Answer {
+        Q::select(
+            || self.closest_hit(g, r, &mut NoStats),
+            || self.any_hit(g, r, &mut NoStats),
+        )
     }
 
     #[inline]

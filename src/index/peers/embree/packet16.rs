@@ -17,8 +17,7 @@
 use super::rtc_ray::{in_range, refusal};
 use super::{Embree, EmbreeParams};
 use crate::geometry::{Hit, Ray};
-use crate::index::kit::ray_queries;
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use embree3::{Hit16, INVALID_ID, IntersectContext, Ray16, RayHit16, ValidMask, ValidMaskN};
 
@@ -90,7 +89,10 @@ impl Index for EmbreeP16 {
     }
 
     // Single rays (the last-hit cache) go to the robust scene's `rtcIntersect1`/`rtcOccluded1`.
-    ray_queries!(Index::closest_hit, Index::any_hit, |index| &index.0);
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        self.0.query::<Q, G, S>(g, r, s)
+    }
 
     fn info(&self) -> IndexInfo {
         self.0.info()

@@ -2,10 +2,10 @@
 //! bounds and walks it with its own node test; our kernel decides every hit, in our order.
 
 use super::{ObvhsParams, culling_bound, prim_boxes};
-use crate::geometry::{ClosestHit, Hit, Ray};
+use crate::geometry::Ray;
 use crate::index::build_budget::per_primitive;
-use crate::index::kit::{prim_test, ray_queries};
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::kit::prim_test;
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -37,35 +37,6 @@ pub trait ObvhsTree: Sized + Send + Sync + 'static {
 #[derive(Clone)]
 pub struct Obvhs<T>(T);
 
-/// The closest hit: obvhs's `tmax` follows the best `t` with [`culling_bound`]'s slack.
-#[inline]
-fn closest<T: ObvhsTree, G: Geometry, S: Stats>(
-    tree: &T,
-    geom: &G,
-    ray: &Ray,
-    stats: &mut S,
-) -> Option<Hit> {
-    let mut best = ClosestHit::new(ray.t_max);
-    tree.walk(ray, stats, |prim, stats, oray| {
-        if prim_test::closest(&mut best, geom, prim, ray, stats) {
-            oray.tmax = culling_bound(best.t());
-        }
-        true
-    });
-    best.get()
-}
-
-/// Whether any primitive is hit, stopping at the first (as far as obvhs's loop allows).
-#[inline]
-fn any<T: ObvhsTree, G: Geometry, S: Stats>(tree: &T, geom: &G, ray: &Ray, stats: &mut S) -> bool {
-    let mut found = false;
-    tree.walk(ray, stats, |prim, stats, _| {
-        found |= prim_test::any(geom, prim, ray, stats);
-        !found
-    });
-    found
-}
-
 impl<T: ObvhsTree> Index for Obvhs<T> {
     type Params = ObvhsParams;
 
@@ -75,7 +46,21 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
         Ok(Obvhs(T::build(&boxes, params, &mut Duration::default())))
     }
 
-    ray_queries!(closest, any, |index| &index.0);
+    /// obvhs's walk, each primitive through our kernel; for the closest hit obvhs's `tmax`
+    /// follows the best `t` with [`culling_bound`]'s slack, an any-hit query stops at the first
+    /// hit (as far as obvhs's loop allows).
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
+        let mut found = Q::start(r);
+        self.0.walk(r, s, |prim, s, oray| {
+            let over = prim_test::test::<Q, G, S>(&mut found, g, prim, r, s);
+            if Q::CLOSEST {
+                oray.tmax = culling_bound(Q::reach(&found, r));
+            }
+            !over
+        });
+        Q::answer(found)
+    }
 
     fn estimated_build_bytes(prims: usize, _: &ObvhsParams) -> Option<usize> {
         per_primitive(prims, T::BUILD_BYTES_PER_PRIM)

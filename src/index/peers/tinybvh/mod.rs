@@ -27,7 +27,7 @@
 use super::triangle_peer::peer_triangles;
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::per_primitive;
-use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, NoStats, Stats};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
 
@@ -172,6 +172,16 @@ impl Index for TinyBvh8 {
         (refused != 0).then_some(
             "its coordinates overflow tinybvh's ray check (the sum of origin, direction and t is \
              NaN), on which tinybvh exits the process",
+        )
+    }
+
+    /// tinybvh counts nothing: its two calls, [`Index::closest_hit`] and [`Index::any_hit`]
+    /// below, ignore the counters.
+    #[inline]
+    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, _: &mut S) -> Q::Answer {
+        Q::select(
+            || self.closest_hit(g, r, &mut NoStats),
+            || self.any_hit(g, r, &mut NoStats),
         )
     }
 
