@@ -34,6 +34,7 @@ mod proptest_indices;
 mod protocol;
 mod reliability;
 mod render;
+mod reorder;
 mod report_folder;
 mod report_html;
 mod results_page;
