@@ -20,6 +20,12 @@
  * 16-byte vectors, and a vector load over several narrower stores (field by field) cannot be
  * store-forwarded; written field by field, this program ran 0.81x as fast on the bunny's primary
  * rays and 0.94x on its incoherent rays (README, "Peers").
+ *
+ * RAY_STRIDE=96 lays the records out 96 bytes apart, as the suite's `Ray` is (the ray's memory
+ * traffic without its extra fields). The traced loop is one function, `trace_all`, so that
+ * Callgrind's inclusive count of it is the cost of the rays; tools/peers_standalone.sh runs this
+ * program and the suite's `trace` side by side, under Callgrind and on the clock
+ * (docs/results/2026-12-07-peers-standalone.md).
  */
 #include <embree3/rtcore.h>
 #include <emmintrin.h>

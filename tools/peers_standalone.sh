@@ -13,7 +13,10 @@
 # Callgrind runs on these sets; the wall-clock rounds on the protocol's full sets (1024 x 1024
 # and 1,048,576), median of 5 repeats per standalone process. Set CALLGRIND=0 or WALL=0 to skip
 # a step. Output: a table on stdout; the raw files under $WORK (default /tmp/peers-standalone).
-# The binary: $ACCELBENCH (default: cargo build --release --features peers, target/release).
+# The binaries: $ACCELBENCH for the clock (default: cargo build --release --features peers) and
+# $ACCELBENCH_V3 for Callgrind (default: the same built for AVX2 with --target
+# x86_64-unknown-linux-gnu, which keeps it apart from the native build in the same target dir).
+# Figures of 2026-12-07: docs/results/2026-12-07-peers-standalone.md.
 set -euo pipefail
 
 MESH=${1:-../shared/meshes/stanford_bunny.obj}

@@ -11,7 +11,8 @@
  * Run (one thread):
  *   /tmp/tinybvh_standalone ../shared/meshes/stanford_bunny.obj /tmp/p.rays 5
  * tools/peers_standalone.sh runs it and the suite's `trace` on the same rays, also under
- * Callgrind (instructions per ray).
+ * Callgrind (instructions per ray; Valgrind does not decode AVX-512, so for Callgrind build it
+ * with -march=x86-64-v3 instead of -march=native).
  *
  * Like the suite's shim (src/index/peers/tinybvh/shim.cpp): 3 vertices per triangle (x, y, z,
  * 0), tinybvh's reference binned SAH build, then BVH8_CPU's own conversion (the steps of
