@@ -16,10 +16,16 @@
  * repeats in Mrays/s and the number of hits (compare with the suite's `hits` column).
  *
  * The ray's origin with tnear and its direction with time are each written with one 16-byte
- * store, as the suite does (src/index/embree_peer/rtc_ray.rs): rtcIntersect1 loads them as
+ * store, as the suite does (src/index/peers/embree/rtc_ray.rs): rtcIntersect1 loads them as
  * 16-byte vectors, and a vector load over several narrower stores (field by field) cannot be
  * store-forwarded; written field by field, this program ran 0.81x as fast on the bunny's primary
  * rays and 0.94x on its incoherent rays (README, "Peers").
+ *
+ * RAY_STRIDE=96 lays the records out 96 bytes apart, as the suite's `Ray` is (the ray's memory
+ * traffic without its extra fields). The traced loop is one function, `trace_all`, so that
+ * Callgrind's inclusive count of it is the cost of the rays; tools/peers_standalone.sh runs this
+ * program and the suite's `trace` side by side, under Callgrind and on the clock
+ * (docs/results/2026-12-07-peers-standalone.md).
  */
 #include <embree3/rtcore.h>
 #include <emmintrin.h>
@@ -97,6 +103,31 @@ static int cmp_double(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
+/* The traced region, one function so that Callgrind's inclusive count of it is the cost of the
+ * rays: one RTCRayHit and one rtcIntersect1 per record; returns the number of hits. */
+__attribute__((noinline)) static size_t trace_all(RTCScene s, const float *rays, size_t nrays,
+                                                  size_t stride) {
+    const __m128 dir_lanes = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    size_t hits = 0;
+    for (size_t i = 0; i < nrays; i++) {
+        const float *r = rays + stride * i;
+        struct RTCRayHit rh;
+        /* org_x..z, tnear = r[0..3]; dir_x..z = r[4..6] with time = 0 (lane 3 cleared). */
+        _mm_store_ps(&rh.ray.org_x, _mm_loadu_ps(r));
+        _mm_store_ps(&rh.ray.dir_x, _mm_and_ps(_mm_loadu_ps(r + 4), dir_lanes));
+        rh.ray.tfar = r[7];
+        rh.ray.mask = 0xFFFFFFFFu; rh.ray.id = 0; rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(s, &ctx, &rh);
+        hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    return hits;
+}
+
 int main(int argc, char **argv) {
     if (argc != 5 || (strcmp(argv[3], "robust") && strcmp(argv[3], "fast"))) {
         fprintf(stderr, "usage: %s MESH.obj RAYS.rays robust|fast REPEATS\n", argv[0]);
@@ -106,6 +137,18 @@ int main(int argc, char **argv) {
     size_t nrays;
     float *rays = load_rays(argv[2], &nrays);
     int repeats = atoi(argv[4]) > 0 ? atoi(argv[4]) : 1;
+    /* RAY_STRIDE=96 spreads the records 96 bytes apart, as the suite's `Ray` is laid out. */
+    const char *stride_env = getenv("RAY_STRIDE");
+    size_t stride = stride_env ? (size_t)atoi(stride_env) / 4 : 8;
+    if (stride < 8 || stride % 4) { fprintf(stderr, "RAY_STRIDE: a multiple of 16 from 32\n"); return 2; }
+    if (stride != 8) {
+        float *spread = aligned_alloc(16, nrays * stride * 4);
+        if (!spread) { fprintf(stderr, "out of memory\n"); return 1; }
+        memset(spread, 0, nrays * stride * 4);
+        for (size_t i = 0; i < nrays; i++) memcpy(spread + stride * i, rays + 8 * i, 32);
+        free(rays);
+        rays = spread;
+    }
 
     RTCDevice dev = rtcNewDevice("threads=1");
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -125,27 +168,10 @@ int main(int argc, char **argv) {
     double build = now() - t0;
 
     double *times = malloc(sizeof(double) * (size_t)repeats);
-    const __m128 dir_lanes = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
     size_t hits = 0;
     for (int rep = 0; rep < repeats; rep++) {
-        struct RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-        hits = 0;
         double start = now();
-        for (size_t i = 0; i < nrays; i++) {
-            const float *r = rays + 8 * i;
-            struct RTCRayHit rh;
-            /* org_x..z, tnear = r[0..3]; dir_x..z = r[4..6] with time = 0 (lane 3 cleared). */
-            _mm_store_ps(&rh.ray.org_x, _mm_loadu_ps(r));
-            _mm_store_ps(&rh.ray.dir_x, _mm_and_ps(_mm_loadu_ps(r + 4), dir_lanes));
-            rh.ray.tfar = r[7];
-            rh.ray.mask = 0xFFFFFFFFu; rh.ray.id = 0; rh.ray.flags = 0;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(s, &ctx, &rh);
-            hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
+        hits = trace_all(s, rays, nrays, stride);
         times[rep] = now() - start;
     }
     qsort(times, (size_t)repeats, sizeof(double), cmp_double);
