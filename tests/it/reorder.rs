@@ -45,26 +45,13 @@ fn reordered_counters_stay_with_their_rays() {
 /// verified against the index's `single` row (no mismatch), with that row's counters.
 #[test]
 fn the_suite_gives_reorder_rows() {
-    use accelbench::harness::suite::{Shard, SuiteConfig, run_suite};
-    use accelbench::harness::workload::{RaySet, SetSizes};
-    use accelbench::index::{IndexSpec, ModeFamily};
-    let cfg = SuiteConfig {
-        indices: ["bvh", "kdtree"].map(IndexSpec::named).to_vec(),
-        sets: vec![RaySet::Primary, RaySet::Shadow, RaySet::Incoherent],
-        threads: vec![1],
-        sizes: SetSizes {
-            primary_side: 32,
-            incoherent: 600,
-            ao_fraction: 0.05,
-        },
-        repeats: 1,
-        kernel: TriangleKernelKind::Exact,
-        verify_budget: u64::MAX,
-        brute_timing_budget: 0,
-        timed: true,
-        shard: Shard::WHOLE,
-        modes: vec![TraceMode::Single, TraceMode::Reorder],
-    };
+    use accelbench::harness::suite::run_suite;
+    use accelbench::harness::workload::RaySet;
+    use accelbench::index::ModeFamily;
+    let mut cfg = crate::suite::config(&["bvh", "kdtree"]);
+    cfg.sets = vec![RaySet::Primary, RaySet::Shadow, RaySet::Incoherent];
+    cfg.threads = vec![1];
+    cfg.modes = vec![TraceMode::Single, TraceMode::Reorder];
     let scene = generators::generate("icosphere", 2000, 1).unwrap();
     let res = run_suite(&[scene], &cfg, &indicatif::ProgressBar::hidden()).unwrap();
     assert_eq!(res.mismatch_total, 0);

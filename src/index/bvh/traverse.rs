@@ -23,6 +23,24 @@ pub type Tree<'a> = tree::Tree<'a, Node>;
 impl BoxTree<STACK> for Tree<'_> {
     #[inline(always)]
     fn closest<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
+        self.step::<SAFE, true, S>(s)
+    }
+
+    #[inline(always)]
+    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
+        self.step::<SAFE, false, S>(s)
+    }
+}
+
+impl Tree<'_> {
+    /// Both children's boxes in one pass; when both are hit, the nearer is visited next with
+    /// `NEAR_FIRST` (closest hit) and the first otherwise (any hit), the other pushed with its
+    /// entry.
+    #[inline(always)]
+    fn step<const SAFE: bool, const NEAR_FIRST: bool, S: Stats>(
+        &self,
+        s: Step<S, Entry, STACK>,
+    ) -> Option<Child> {
         let node = &self.nodes[s.node as usize];
         let [a, b] = node.children;
         s.stats.box_tests(2);
@@ -30,26 +48,12 @@ impl BoxTree<STACK> for Tree<'_> {
         match hit {
             0b11 => {
                 let (ea, eb) = (enter.x, enter.y);
-                let (near, far, far_entry) = if eb < ea { (b, a, ea) } else { (a, b, eb) };
+                let (near, far, far_entry) = match NEAR_FIRST && eb < ea {
+                    true => (b, a, ea),
+                    false => (a, b, eb),
+                };
                 s.stack.push((far, far_entry));
                 Some(near)
-            }
-            0b01 => Some(a),
-            0b10 => Some(b),
-            _ => None,
-        }
-    }
-
-    #[inline(always)]
-    fn any<const SAFE: bool, S: Stats>(&self, s: Step<S, Entry, STACK>) -> Option<Child> {
-        let node = &self.nodes[s.node as usize];
-        let [a, b] = node.children;
-        s.stats.box_tests(2);
-        let (hit, enter) = slab::hit_children::<SAFE>(node, s.ray, s.t_max);
-        match hit {
-            0b11 => {
-                s.stack.push((b, enter.y));
-                Some(a)
             }
             0b01 => Some(a),
             0b10 => Some(b),

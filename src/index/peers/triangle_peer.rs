@@ -1,9 +1,25 @@
 //! What the triangle-only outside peers (Embree, tinybvh) share: their input, the scene's
-//! triangles in id order, or the reason they skip a scene.
+//! triangles in id order, or the reason they skip a scene; and their query, a library call per
+//! query kind.
 
-use crate::geometry::Triangle;
-use crate::index::BuildError;
+use crate::geometry::{Ray, Triangle};
+use crate::index::{BuildError, HitQuery, Index, NoStats};
 use crate::scene::Geometry;
+
+/// The answer to query `Q` of a peer that asks its library: its own [`Index::closest_hit`] or
+/// [`Index::any_hit`] (which it overrides with the library's calls), without counters (the
+/// libraries count nothing).
+#[inline(always)]
+pub(crate) fn library_query<Q: HitQuery, I: Index, G: Geometry>(
+    index: &I,
+    geom: &G,
+    ray: &Ray,
+) -> Q::Answer {
+    Q::select(
+        || index.closest_hit(geom, ray, &mut NoStats),
+        || index.any_hit(geom, ray, &mut NoStats),
+    )
+}
 
 /// The scene's triangles (primitive id = position), or [`BuildError::Unsupported`] when the
 /// scene has other primitives (the peers test triangles only) and [`BuildError::Failed`] when

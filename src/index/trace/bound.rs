@@ -5,8 +5,6 @@
 use super::batch::BatchIndex;
 use super::mode::TraceMode;
 use super::parallel::trace_in_parallel;
-use super::query::Query;
-use super::reorder::trace_reordered;
 use super::trace_index::TraceIndex;
 use crate::geometry::{Hit, Ray};
 use crate::index::{AnyHit, BuildError, Closest, Counters, Index, IndexInfo, NoStats};
@@ -138,7 +136,7 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
         out: &mut [Option<Hit>],
         counters: Option<&mut [Counters]>,
     ) {
-        trace_batch::<Closest, _, _>(&self.index, &self.geom, mode, rays, out, counters);
+        trace_in_parallel::<Closest, _, _>(&self.index, &self.geom, mode, rays, out, counters);
     }
     fn any_hits_in(
         &self,
@@ -147,22 +145,6 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
         out: &mut [bool],
         counters: Option<&mut [Counters]>,
     ) {
-        trace_batch::<AnyHit, _, _>(&self.index, &self.geom, mode, rays, out, counters);
-    }
-}
-
-/// Answers query `Q` for a batch traced in `mode`: sorted first in [`TraceMode::Reorder`],
-/// by the parallel driver in order in every other mode.
-fn trace_batch<Q: Query, I: BatchIndex, G: Geometry>(
-    index: &I,
-    geom: &G,
-    mode: TraceMode,
-    rays: &[Ray],
-    out: &mut [Q::Answer],
-    counters: Option<&mut [Counters]>,
-) {
-    match mode {
-        TraceMode::Reorder => trace_reordered::<Q, _, _>(index, geom, rays, out, counters),
-        _ => trace_in_parallel::<Q, _, _>(index, geom, mode, rays, out, counters),
+        trace_in_parallel::<AnyHit, _, _>(&self.index, &self.geom, mode, rays, out, counters);
     }
 }

@@ -12,19 +12,14 @@
 //! incoherent rays sort into cells of their origins. Ties keep input order (the sort is by key,
 //! then index), so the order is deterministic.
 //!
-//! Every ray is traced by the same one-query-at-a-time call as in `single`, so the hits are
-//! those of `single` bit for bit; only the order differs. The sort, the gather of the rays and
+//! The parallel driver ([`super::parallel`]) traces the sorted rays ([`Sorted`]) as in `single`,
+//! so the hits are those of `single` bit for bit; only the order differs. The sort, the gather of the rays and
 //! the scatter of the answers belong to the mode and are timed with it. The mode holds, per
 //! ray, the sorted copy of the ray, its key and index, and its sorted answer and counters
 //! ([`BYTES_PER_RAY`]), once per batch, never per ray.
 
-use super::batch::BatchIndex;
-use super::mode::TraceMode;
-use super::parallel::trace_in_parallel;
-use super::query::Query;
 use crate::geometry::Ray;
 use crate::index::Counters;
-use crate::scene::Geometry;
 use glam::Vec3A;
 use rayon::prelude::*;
 
@@ -85,32 +80,31 @@ pub fn coherence_order(rays: &[Ray]) -> Vec<(u64, usize)> {
     order
 }
 
-/// Answers query `Q` for a batch in coherence order (see the module doc): the same answers,
-/// and with `counters` the same per-ray counters, as [`TraceMode::Single`].
-pub fn trace_reordered<Q: Query, I: BatchIndex, G: Geometry>(
-    index: &I,
-    geom: &G,
-    rays: &[Ray],
-    out: &mut [Q::Answer],
-    counters: Option<&mut [Counters]>,
-) {
-    let order = coherence_order(rays);
-    let sorted: Vec<Ray> = order.par_iter().map(|&(_, i)| rays[i]).collect();
-    let mut answers = vec![Q::Answer::default(); rays.len()];
-    let single = TraceMode::Single;
-    match counters {
-        Some(c) => {
-            let mut sorted_counters = vec![Counters::default(); rays.len()];
-            let sc = Some(&mut sorted_counters[..]);
-            trace_in_parallel::<Q, _, _>(index, geom, single, &sorted, &mut answers, sc);
-            for (&(_, i), s) in order.iter().zip(&sorted_counters) {
-                c[i] = *s;
-            }
+/// A batch in coherence order: its rays sorted ([`Sorted::rays`]) and where each came from.
+pub struct Sorted {
+    /// Each sorted ray's key and its index in the batch.
+    order: Vec<(u64, usize)>,
+    /// The batch's rays in coherence order.
+    pub rays: Vec<Ray>,
+}
+
+impl Sorted {
+    /// Sorts `rays` ([`coherence_order`]) and gathers them in that order.
+    pub fn new(rays: &[Ray]) -> Sorted {
+        let order = coherence_order(rays);
+        let sorted = order.par_iter().map(|&(_, i)| rays[i]).collect();
+        Sorted {
+            order,
+            rays: sorted,
         }
-        None => trace_in_parallel::<Q, _, _>(index, geom, single, &sorted, &mut answers, None),
     }
-    for (&(_, i), a) in order.iter().zip(&answers) {
-        out[i] = *a;
+
+    /// Puts per-ray values of the sorted rays (`sorted[k]` of `self.rays[k]`) back at their
+    /// rays' places in the batch.
+    pub fn scatter<T: Copy>(&self, sorted: &[T], out: &mut [T]) {
+        for (&(_, i), v) in self.order.iter().zip(sorted) {
+            out[i] = *v;
+        }
     }
 }
 

@@ -17,10 +17,10 @@ mod packet16;
 mod rtc_ray;
 mod stream;
 
-use super::triangle_peer::peer_triangles;
+use super::triangle_peer::{library_query, peer_triangles};
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::{per_primitive, stopped};
-use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, NoStats, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use device::MonitoredDevice;
 use embree3::{
@@ -165,14 +165,10 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
         rtc_ray::refusal(ray)
     }
 
-    /// Embree counts nothing: its two calls, [`Index::closest_hit`] and [`Index::any_hit`]
-    /// below, ignore the counters.
+    /// The library's two calls below ([`library_query`]).
     #[inline]
     fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, _: &mut S) -> Q::Answer {
-        Q::select(
-            || self.closest_hit(g, r, &mut NoStats),
-            || self.any_hit(g, r, &mut NoStats),
-        )
+        library_query::<Q, _, _>(self, g, r)
     }
 
     #[inline]

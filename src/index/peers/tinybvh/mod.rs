@@ -24,10 +24,10 @@
 //!   keeps beside it are `kept_bytes`, and the build's peak is counted through tinybvh's
 //!   allocation hooks.
 
-use super::triangle_peer::peer_triangles;
+use super::triangle_peer::{library_query, peer_triangles};
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::per_primitive;
-use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, NoStats, Stats};
+use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
 
@@ -175,14 +175,10 @@ impl Index for TinyBvh8 {
         )
     }
 
-    /// tinybvh counts nothing: its two calls, [`Index::closest_hit`] and [`Index::any_hit`]
-    /// below, ignore the counters.
+    /// The library's two calls below ([`library_query`]).
     #[inline]
     fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, _: &mut S) -> Q::Answer {
-        Q::select(
-            || self.closest_hit(g, r, &mut NoStats),
-            || self.any_hit(g, r, &mut NoStats),
-        )
+        library_query::<Q, _, _>(self, g, r)
     }
 
     #[inline]
