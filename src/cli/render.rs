@@ -50,8 +50,8 @@ pub struct RenderArgs {
     /// Triangle kernel every index uses.
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
-    /// Trace mode of each row's camera rays: single, stream, last-hit, packets4, packets8 (the
-    /// image is the same in every mode; the time is not).
+    /// Trace mode of each row's camera rays: single, stream, last-hit, packets4, packets8,
+    /// packets16 (the image is the same in every mode; the time is not).
     #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
     mode: TraceMode,
 }

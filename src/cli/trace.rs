@@ -36,7 +36,7 @@ pub struct TraceArgs {
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
     /// Trace mode: single (one query at a time), stream (the index's own batch technique),
-    /// last-hit, packets4, packets8.
+    /// last-hit, packets4, packets8, packets16.
     #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
     mode: TraceMode,
 }

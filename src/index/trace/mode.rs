@@ -2,7 +2,7 @@
 //! ([`ModeFamily`]), and their labels.
 
 /// Largest packet [`TraceMode::Packets`] takes.
-pub const MAX_PACKET: usize = 8;
+pub const MAX_PACKET: usize = 16;
 
 /// How a batch is traced. Every mode of every index of ours returns the same hits, bit for bit.
 ///
@@ -20,7 +20,7 @@ pub enum TraceMode {
     Stream,
     /// One ray at a time, the previous ray's hit primitive tested first.
     LastHit,
-    /// Packets of this many consecutive rays (4 or 8).
+    /// Packets of this many neighbouring rays (4, 8 or 16; [`super::tiles`] says which).
     Packets(usize),
 }
 
@@ -55,7 +55,8 @@ impl TraceMode {
         }
     }
 
-    /// A mode from its label (`single`, `stream`, `last-hit`, `packets4`, `packets8`).
+    /// A mode from its label (`single`, `stream`, `last-hit`, `packets4`, `packets8`,
+    /// `packets16`).
     pub fn parse(s: &str) -> Result<TraceMode, String> {
         match s.trim() {
             "single" => Ok(TraceMode::Single),
@@ -63,8 +64,10 @@ impl TraceMode {
             "last-hit" => Ok(TraceMode::LastHit),
             "packets4" => Ok(TraceMode::Packets(4)),
             "packets8" => Ok(TraceMode::Packets(8)),
+            "packets16" => Ok(TraceMode::Packets(16)),
             other => Err(format!(
-                "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, packets8"
+                "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, \
+                 packets8, packets16"
             )),
         }
     }

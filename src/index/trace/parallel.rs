@@ -1,12 +1,15 @@
 //! The parallel driver: a batch cut into chunks of [`CHUNK`] consecutive rays, each traced by
-//! one rayon worker ([`super::chunk::trace_chunk`]) with its own counters or none.
+//! one rayon worker ([`super::chunk::trace_chunk`]) with its own counters or none. A batch that
+//! is an image of known width, traced in packets, is cut into bands of [`BAND_ROWS`] image rows
+//! instead, each traced in packets from screen tiles ([`super::tiles::trace_band`]).
 
 use super::batch::BatchIndex;
 use super::chunk::trace_chunk;
 use super::mode::TraceMode;
 use super::query::Query;
+use super::tiles::{BAND_ROWS, trace_band};
 use crate::geometry::Ray;
-use crate::index::{Counters, NoStats};
+use crate::index::{Counters, NoStats, Stats};
 use crate::scene::Geometry;
 use rayon::prelude::*;
 
@@ -14,33 +17,54 @@ use rayon::prelude::*;
 const CHUNK: usize = 64;
 
 /// Answers query `Q` for a batch traced in `mode`, in parallel chunks of [`CHUNK`] rays, with
-/// per-ray counters (reset first) when `counters` is given.
+/// per-ray counters (reset first) when `counters` is given. `width`: the batch is an image of
+/// this many columns in raster order (camera rays), whose packets then come from tiles.
 pub fn trace_in_parallel<Q: Query, I: BatchIndex, G: Geometry>(
     index: &I,
     geom: &G,
     mode: TraceMode,
     rays: &[Ray],
+    width: Option<usize>,
     out: &mut [Q::Answer],
     counters: Option<&mut [Counters]>,
 ) {
     assert_eq!(rays.len(), out.len(), "one output per ray");
-    let chunk = |(rays, out): (&[Ray], &mut [Q::Answer]), c: Option<&mut [Counters]>| match c {
-        Some(c) => {
-            c.fill(Counters::default());
-            trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, c)
-        }
-        None => {
-            let none = &mut [NoStats; CHUNK][..rays.len()];
-            trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, none)
-        }
+    let tiled = match (mode, width) {
+        (TraceMode::Packets(n), Some(w)) if w > 0 => Some((n, w)),
+        _ => None,
     };
-    let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
+    let item = tiled.map_or(CHUNK, |(_, w)| BAND_ROWS * w);
+    let work = rays.par_chunks(item).zip(out.par_chunks_mut(item));
     match counters {
         Some(c) => {
             assert_eq!(rays.len(), c.len(), "one counter per ray");
-            work.zip(c.par_chunks_mut(CHUNK))
-                .for_each(|(w, c)| chunk(w, Some(c)));
+            work.zip(c.par_chunks_mut(item))
+                .for_each(|((rays, out), c)| {
+                    c.fill(Counters::default());
+                    trace_item::<Q, _, _, _>(index, geom, mode, tiled, rays, out, c)
+                });
         }
-        None => work.for_each(|w| chunk(w, None)),
+        // A vector of the zero-sized `NoStats` allocates nothing.
+        None => work.for_each(|(rays, out)| {
+            let none = &mut vec![NoStats; rays.len()];
+            trace_item::<Q, _, _, _>(index, geom, mode, tiled, rays, out, none)
+        }),
+    }
+}
+
+/// One work item: a band of an image in tiles (`tiled`: the packet size and the image width),
+/// or a chunk in `mode`.
+fn trace_item<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
+    index: &I,
+    geom: &G,
+    mode: TraceMode,
+    tiled: Option<(usize, usize)>,
+    rays: &[Ray],
+    out: &mut [Q::Answer],
+    stats: &mut [S],
+) {
+    match tiled {
+        Some((n, w)) => trace_band::<Q, _, _, _>(index, geom, n, w, rays, out, stats),
+        None => trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, stats),
     }
 }
