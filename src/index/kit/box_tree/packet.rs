@@ -19,8 +19,8 @@
 //! order the packet visits the children in. Any-hit packets drop a ray from the mask at its
 //! first hit and stop when no ray is left.
 //!
-//! Hybrid switch ([`HYBRID_BELOW`]): when fewer rays than that are active at a node, each of
-//! them finishes the node's subtree alone with the single-ray loop from its state so far
+//! Hybrid switch ([`go_single`]): when fewer than half the lanes are active at a node, each of
+//! the active rays finishes the node's subtree alone with the single-ray loop from its state so far
 //! ([`LaneQuery::finish_alone`]), and the packet goes on with its stack.
 //!
 //! Counting: every active ray is charged a node visit per node and the node's box tests (as
@@ -224,19 +224,16 @@ const _: () = assert!(
     "a packet's lanes fill one register"
 );
 
-/// Below this many active rays a packet lets each of them finish the current subtree alone
-/// with the single-ray loop (the hybrid switch of Benthin, Wald, Woop, Ernst and Mark 2012).
-const HYBRID_BELOW: u32 = 0;
-
-/// EXPERIMENT: the threshold from `ACCELBENCH_HYBRID` (measuring only).
-fn hybrid_below() -> u32 {
-    static T: std::sync::OnceLock<u32> = std::sync::OnceLock::new();
-    *T.get_or_init(|| {
-        std::env::var("ACCELBENCH_HYBRID")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(HYBRID_BELOW)
-    })
+/// Whether a packet of `V::WIDTH` lanes with `active` rays lets them finish alone (the hybrid
+/// switch of Benthin, Wald, Woop, Ernst and Mark 2012): when fewer than half its lanes are
+/// active, each remaining ray walks the current subtree with the single-ray loop. Half, because
+/// on bunny rays (one thread) it kept the coherent primary packets at their speed without the
+/// switch (thresholds of 4 and 8 of 16 measured within the intervals of 0) while bringing
+/// incoherent 16-ray packets from 0.25x of single rays (no switch) to about 0.8x (`bvh8`) and
+/// 1.1x (`bvh`); switching later (12 or 16 of 16) cost the primary packets of `bvh` a fifth.
+#[inline(always)]
+fn go_single<V: Lanes>(active: u32) -> bool {
+    2 * active.count_ones() < V::WIDTH as u32
 }
 
 /// Closest hits of a packet of at most [`MAX_PACKET`] rays (`out`, `stats` as long as `rays`).
@@ -311,10 +308,9 @@ fn walk<Q, const W: usize, const N: usize, T, G, S, V>(
     let mut q = Q::new(rays);
     let mut stack = Stack::<(Child, u32, V), N>::new();
     let mut at = top.root;
-    let hybrid = hybrid_below();
     loop {
         active = q.needing(active);
-        if active != 0 && active.count_ones() < hybrid {
+        if active != 0 && go_single::<V>(active) {
             for k in bits(active) {
                 q.finish_alone(tree, geom, &rays[k], k, at, &mut stats[k]);
             }
