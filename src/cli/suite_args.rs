@@ -50,16 +50,16 @@ pub struct SuiteArgs {
     /// Trace modes, comma-separated: single (one query at a time, every index), stream (the
     /// index's own batch technique: bvh4/bvh8 interleaved and lockstep walks, embree-p16's
     /// 16-ray packets; rows `INDEX+stream` only for indices that have one), last-hit (the
-    /// previous ray's hit primitive tested first), packets4, packets8 (the coherent sets in
-    /// packets of neighbouring rays; bvh, bvh4 and bvh8 walk packets, the others ray by ray),
-    /// reorder (the batch sorted by origin and direction, then one query at a time; rows
+    /// previous ray's hit primitive tested first), packets4, packets8, packets16 (the coherent
+    /// sets in packets of neighbouring rays; bvh, bvh4 and bvh8 walk packets, the others ray by
+    /// ray), reorder (the batch sorted by origin and direction, then one query at a time; rows
     /// `INDEX+reorder`).
     #[arg(long, value_delimiter = ',', value_parser = TraceMode::parse, default_value = "single,stream")]
     pub modes: Vec<TraceMode>,
     /// Shorthand: add `last-hit` to `--modes`.
     #[arg(long)]
     pub last_hit: bool,
-    /// Shorthand: add `packets4` or `packets8` to `--modes`.
+    /// Shorthand: add `packets4`, `packets8` or `packets16` to `--modes`.
     #[arg(long, value_parser = parse_packet_size)]
     pub packets: Option<usize>,
     /// The memory the run may take (`512M`, `4G`; 1024-based): a run whose ray sets would not
@@ -70,13 +70,14 @@ pub struct SuiteArgs {
     pub memory_budget: Option<u64>,
 }
 
-/// A packet size: 4 or 8.
+/// A packet size: 4, 8 or 16.
 fn parse_packet_size(s: &str) -> Result<usize, String> {
     match s.trim() {
         "4" => Ok(4),
         "8" => Ok(8),
+        "16" => Ok(16),
         other => Err(format!(
-            "packet size '{other}' is not supported: use 4 or 8"
+            "packet size '{other}' is not supported: use 4, 8 or 16"
         )),
     }
 }

@@ -36,7 +36,7 @@ pub struct TraceArgs {
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
     /// Trace mode: single (one query at a time), stream (the index's own batch technique),
-    /// last-hit, packets4, packets8, reorder (sorted by origin and direction first).
+    /// last-hit, packets4, packets8, packets16, reorder (sorted by origin and direction first).
     #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
     mode: TraceMode,
     /// Timed passes; the reported time is their median (each pass traces every ray).

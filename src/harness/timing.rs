@@ -1,6 +1,7 @@
 //! Timed and counting passes over a batch of rays. Counting never runs inside a timed pass.
 
 use crate::geometry::{Hit, Ray};
+use crate::index::trace::tiles;
 use crate::index::{Counters, TraceIndex, TraceMode};
 use std::time::{Duration, Instant};
 
@@ -113,6 +114,46 @@ impl PassOutput {
     }
 }
 
+/// The width of `rays` as an image in raster order, if the harness takes it for one: a batch
+/// of `side * side` rays is a `side x side` image ([`tiles::square_side`]), which the suite's
+/// camera sets (primary, dof, motion, lens) are. The packet modes then form packets from
+/// screen tiles ([`crate::index::trace::tiles`]). Shadow sets are not images (one ray per lit
+/// primary hit and light, misses left out): they are packed in set order, and one whose
+/// length happens to be a square is tiled as if it were an image, with the same answers.
+fn image_width(rays: &[Ray]) -> Option<usize> {
+    tiles::square_side(rays.len())
+}
+
+/// Closest hits of `rays` in `mode`, as an image of `width` columns when given.
+fn closest_in(
+    index: &dyn TraceIndex,
+    mode: TraceMode,
+    rays: &[Ray],
+    width: Option<usize>,
+    out: &mut [Option<Hit>],
+    c: Option<&mut [Counters]>,
+) {
+    match width {
+        Some(w) => index.closest_hits_image(mode, rays, w, out, c),
+        None => index.closest_hits_in(mode, rays, out, c),
+    }
+}
+
+/// Any-hit results of `rays` in `mode`, as an image of `width` columns when given.
+fn any_in(
+    index: &dyn TraceIndex,
+    mode: TraceMode,
+    rays: &[Ray],
+    width: Option<usize>,
+    out: &mut [bool],
+    c: Option<&mut [Counters]>,
+) {
+    match width {
+        Some(w) => index.any_hits_image(mode, rays, w, out, c),
+        None => index.any_hits_in(mode, rays, out, c),
+    }
+}
+
 /// One timed pass: the batch traced once in `mode` on the current rayon pool, no counting,
 /// the answers left in `out` (whose query it answers). Returns the wall time.
 pub fn time_pass(
@@ -121,10 +162,11 @@ pub fn time_pass(
     rays: &[Ray],
     out: &mut PassOutput,
 ) -> Duration {
+    let width = image_width(rays);
     let start = Instant::now();
     match out {
-        PassOutput::Closest(out) => index.closest_hits_in(mode, rays, out, None),
-        PassOutput::Any(out) => index.any_hits_in(mode, rays, out, None),
+        PassOutput::Closest(out) => closest_in(index, mode, rays, width, out, None),
+        PassOutput::Any(out) => any_in(index, mode, rays, width, out, None),
     }
     start.elapsed()
 }
@@ -141,40 +183,44 @@ pub fn counting_pass(
 /// Rays per slice of a counting pass: between slices the pass checks for a SIGINT.
 const COUNTING_SLICE: usize = 1 << 14;
 
-/// [`counting_pass`] with the batch traced in `mode`, in slices of [`COUNTING_SLICE`] rays. A
-/// SIGINT ([`super::interrupt::requested`]) stops it before the next slice, leaving the rest of
-/// the answers unset: a caller that installed the handler checks it after the pass and drops
-/// what the pass returned. (The timed passes are not cut: each is one call, so that nothing
-/// but tracing is timed.)
+/// [`counting_pass`] with the batch traced in `mode`, in slices of [`COUNTING_SLICE`] rays (of
+/// whole bands of [`tiles::BAND_ROWS`] rows for an image, so that its packets are the timed
+/// passes' tiles: at least one band). A SIGINT ([`super::interrupt::requested`]) stops it
+/// before the next slice, leaving the rest of the answers unset: a caller that installed the
+/// handler checks it after the pass and drops what the pass returned. (The timed passes are
+/// not cut: each is one call, so that nothing but tracing is timed.)
 pub fn counting_pass_in(
     index: &dyn TraceIndex,
     query: Query,
     mode: TraceMode,
     rays: &[Ray],
 ) -> (Vec<Counters>, BatchHits) {
+    let width = image_width(rays);
+    let slice = match width {
+        Some(w) => (COUNTING_SLICE / (tiles::BAND_ROWS * w)).max(1) * tiles::BAND_ROWS * w,
+        None => COUNTING_SLICE,
+    };
     let mut counters = vec![Counters::default(); rays.len()];
-    let slices = rays
-        .chunks(COUNTING_SLICE)
-        .zip(counters.chunks_mut(COUNTING_SLICE));
+    let slices = rays.chunks(slice).zip(counters.chunks_mut(slice));
     let stopped = super::interrupt::requested;
     match query {
         Query::Closest => {
             let mut out = vec![None; rays.len()];
-            for ((rays, c), out) in slices.zip(out.chunks_mut(COUNTING_SLICE)) {
+            for ((rays, c), out) in slices.zip(out.chunks_mut(slice)) {
                 if stopped() {
                     break;
                 }
-                index.closest_hits_in(mode, rays, out, Some(c));
+                closest_in(index, mode, rays, width, out, Some(c));
             }
             (counters, out)
         }
         Query::Any => {
             let mut out = vec![false; rays.len()];
-            for ((rays, c), out) in slices.zip(out.chunks_mut(COUNTING_SLICE)) {
+            for ((rays, c), out) in slices.zip(out.chunks_mut(slice)) {
                 if stopped() {
                     break;
                 }
-                index.any_hits_in(mode, rays, out, Some(c));
+                any_in(index, mode, rays, width, out, Some(c));
             }
             (counters, occluded(&out))
         }

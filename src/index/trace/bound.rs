@@ -136,7 +136,26 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
         out: &mut [Option<Hit>],
         counters: Option<&mut [Counters]>,
     ) {
-        trace_in_parallel::<Closest, _, _>(&self.index, &self.geom, mode, rays, out, counters);
+        trace_in_parallel::<Closest, _, _>(
+            &self.index,
+            &self.geom,
+            mode,
+            rays,
+            None,
+            out,
+            counters,
+        );
+    }
+    fn closest_hits_image(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        width: usize,
+        out: &mut [Option<Hit>],
+        counters: Option<&mut [Counters]>,
+    ) {
+        let (index, geom) = (&self.index, &self.geom);
+        trace_in_parallel::<Closest, _, _>(index, geom, mode, rays, Some(width), out, counters);
     }
     fn any_hits_in(
         &self,
@@ -145,6 +164,17 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
         out: &mut [bool],
         counters: Option<&mut [Counters]>,
     ) {
-        trace_in_parallel::<AnyHit, _, _>(&self.index, &self.geom, mode, rays, out, counters);
+        trace_in_parallel::<AnyHit, _, _>(&self.index, &self.geom, mode, rays, None, out, counters);
+    }
+    fn any_hits_image(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        width: usize,
+        out: &mut [bool],
+        counters: Option<&mut [Counters]>,
+    ) {
+        let (index, geom) = (&self.index, &self.geom);
+        trace_in_parallel::<AnyHit, _, _>(index, geom, mode, rays, Some(width), out, counters);
     }
 }

@@ -1,7 +1,8 @@
 //! The tracing machinery: how a batch of rays is traced through any index. The trace modes
 //! ([`mode`]), the batch techniques an index may have ([`batch`]), the query kinds ([`query`]),
-//! the last-hit cache ([`last_hit`]), one worker's chunk ([`chunk`]), the parallel driver
-//! ([`parallel`]) and the coherence order it can trace a batch in ([`reorder`]) and the object-safe [`TraceIndex`] of a built index ([`bound`]).
+//! the last-hit cache ([`last_hit`]), one worker's chunk ([`chunk`]), packets from screen
+//! tiles ([`tiles`]), the parallel driver ([`parallel`]), the coherence order it can trace a
+//! batch in ([`reorder`]) and the object-safe [`TraceIndex`] of a built index ([`bound`]).
 
 pub mod batch;
 pub mod bound;
@@ -11,6 +12,7 @@ pub mod mode;
 pub mod parallel;
 pub mod query;
 pub mod reorder;
+pub mod tiles;
 pub mod trace_index;
 
 pub use batch::BatchIndex;

@@ -2,7 +2,7 @@
 //! ([`ModeFamily`]), and their labels.
 
 /// Largest packet [`TraceMode::Packets`] takes.
-pub const MAX_PACKET: usize = 8;
+pub const MAX_PACKET: usize = 16;
 
 /// How a batch is traced. Every mode of every index of ours returns the same hits, bit for bit.
 ///
@@ -22,7 +22,7 @@ pub enum TraceMode {
     Stream,
     /// One ray at a time, the previous ray's hit primitive tested first.
     LastHit,
-    /// Packets of this many consecutive rays (4 or 8).
+    /// Packets of this many neighbouring rays (4, 8 or 16; [`super::tiles`] says which).
     Packets(usize),
     /// The batch sorted by a coherence key, then one query at a time in that order
     /// ([`super::reorder`]); the sort is part of the mode's time.
@@ -62,7 +62,7 @@ impl TraceMode {
     }
 
     /// A mode from its label (`single`, `stream`, `last-hit`, `packets4`, `packets8`,
-    /// `reorder`).
+    /// `packets16`, `reorder`).
     pub fn parse(s: &str) -> Result<TraceMode, String> {
         match s.trim() {
             "single" => Ok(TraceMode::Single),
@@ -70,9 +70,11 @@ impl TraceMode {
             "last-hit" => Ok(TraceMode::LastHit),
             "packets4" => Ok(TraceMode::Packets(4)),
             "packets8" => Ok(TraceMode::Packets(8)),
+            "packets16" => Ok(TraceMode::Packets(16)),
             "reorder" => Ok(TraceMode::Reorder),
             other => Err(format!(
-                "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, packets8, reorder"
+                "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, \
+                 packets8, packets16, reorder"
             )),
         }
     }

@@ -1,13 +1,16 @@
 //! The parallel driver: a batch cut into chunks of [`CHUNK`] consecutive rays, each traced by
-//! one rayon worker ([`super::chunk::trace_chunk`]) with its own counters or none.
+//! one rayon worker ([`super::chunk::trace_chunk`]) with its own counters or none. A batch that
+//! is an image of known width, traced in packets, is cut into bands of [`BAND_ROWS`] image rows
+//! instead, each traced in packets from screen tiles ([`super::tiles::trace_band`]).
 
 use super::batch::BatchIndex;
 use super::chunk::trace_chunk;
 use super::mode::TraceMode;
 use super::query::Query;
 use super::reorder::Sorted;
+use super::tiles::{BAND_ROWS, trace_band};
 use crate::geometry::Ray;
-use crate::index::{Counters, NoStats};
+use crate::index::{Counters, NoStats, Stats};
 use crate::scene::Geometry;
 use rayon::prelude::*;
 
@@ -15,13 +18,15 @@ use rayon::prelude::*;
 const CHUNK: usize = 64;
 
 /// Answers query `Q` for a batch traced in `mode`, in parallel chunks of [`CHUNK`] rays, with
-/// per-ray counters (reset first) when `counters` is given; in [`TraceMode::Reorder`] the batch
-/// sorted first ([`trace_reordered`]).
+/// per-ray counters (reset first) when `counters` is given. `width`: the batch is an image of
+/// this many columns in raster order (camera rays), whose packets then come from tiles. In
+/// [`TraceMode::Reorder`] the batch is sorted first ([`trace_reordered`]).
 pub fn trace_in_parallel<Q: Query, I: BatchIndex, G: Geometry>(
     index: &I,
     geom: &G,
     mode: TraceMode,
     rays: &[Ray],
+    width: Option<usize>,
     out: &mut [Q::Answer],
     counters: Option<&mut [Counters]>,
 ) {
@@ -29,24 +34,43 @@ pub fn trace_in_parallel<Q: Query, I: BatchIndex, G: Geometry>(
     if mode == TraceMode::Reorder {
         return trace_reordered::<Q, _, _>(index, geom, rays, out, counters);
     }
-    let chunk = |(rays, out): (&[Ray], &mut [Q::Answer]), c: Option<&mut [Counters]>| match c {
-        Some(c) => {
-            c.fill(Counters::default());
-            trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, c)
-        }
-        None => {
-            let none = &mut [NoStats; CHUNK][..rays.len()];
-            trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, none)
-        }
+    let tiled = match (mode, width) {
+        (TraceMode::Packets(n), Some(w)) if w > 0 => Some((n, w)),
+        _ => None,
     };
-    let work = rays.par_chunks(CHUNK).zip(out.par_chunks_mut(CHUNK));
+    let item = tiled.map_or(CHUNK, |(_, w)| BAND_ROWS * w);
+    let work = rays.par_chunks(item).zip(out.par_chunks_mut(item));
     match counters {
         Some(c) => {
             assert_eq!(rays.len(), c.len(), "one counter per ray");
-            work.zip(c.par_chunks_mut(CHUNK))
-                .for_each(|(w, c)| chunk(w, Some(c)));
+            work.zip(c.par_chunks_mut(item))
+                .for_each(|((rays, out), c)| {
+                    c.fill(Counters::default());
+                    trace_item::<Q, _, _, _>(index, geom, mode, tiled, rays, out, c)
+                });
         }
-        None => work.for_each(|w| chunk(w, None)),
+        // A vector of the zero-sized `NoStats` allocates nothing.
+        None => work.for_each(|(rays, out)| {
+            let none = &mut vec![NoStats; rays.len()];
+            trace_item::<Q, _, _, _>(index, geom, mode, tiled, rays, out, none)
+        }),
+    }
+}
+
+/// One work item: a band of an image in tiles (`tiled`: the packet size and the image width),
+/// or a chunk in `mode`.
+fn trace_item<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
+    index: &I,
+    geom: &G,
+    mode: TraceMode,
+    tiled: Option<(usize, usize)>,
+    rays: &[Ray],
+    out: &mut [Q::Answer],
+    stats: &mut [S],
+) {
+    match tiled {
+        Some((n, w)) => trace_band::<Q, _, _, _>(index, geom, n, w, rays, out, stats),
+        None => trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, stats),
     }
 }
 
@@ -61,15 +85,17 @@ fn trace_reordered<Q: Query, I: BatchIndex, G: Geometry>(
 ) {
     let sorted = Sorted::new(rays);
     let mut answers = vec![Q::Answer::default(); rays.len()];
-    let single = TraceMode::Single;
+    let (single, sorted_rays) = (TraceMode::Single, &sorted.rays);
     match counters {
         Some(c) => {
             let mut sorted_counters = vec![Counters::default(); rays.len()];
             let sc = Some(&mut sorted_counters[..]);
-            trace_in_parallel::<Q, _, _>(index, geom, single, &sorted.rays, &mut answers, sc);
+            trace_in_parallel::<Q, _, _>(index, geom, single, sorted_rays, None, &mut answers, sc);
             sorted.scatter(&sorted_counters, c);
         }
-        None => trace_in_parallel::<Q, _, _>(index, geom, single, &sorted.rays, &mut answers, None),
+        None => {
+            trace_in_parallel::<Q, _, _>(index, geom, single, sorted_rays, None, &mut answers, None)
+        }
     }
     sorted.scatter(&answers, out);
 }

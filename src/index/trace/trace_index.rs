@@ -68,6 +68,33 @@ pub trait TraceIndex: Send + Sync {
         out: &mut [bool],
         counters: Option<&mut [Counters]>,
     );
+    /// [`TraceIndex::closest_hits_in`] for a batch that is an image `width` rays wide in raster
+    /// order (camera rays): the packet modes then take their packets from screen tiles
+    /// ([`super::tiles`]). The answers are the same; by default the width is not used.
+    fn closest_hits_image(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        width: usize,
+        out: &mut [Option<Hit>],
+        counters: Option<&mut [Counters]>,
+    ) {
+        let _ = width;
+        self.closest_hits_in(mode, rays, out, counters);
+    }
+    /// [`TraceIndex::any_hits_in`] for an image `width` rays wide, as
+    /// [`TraceIndex::closest_hits_image`].
+    fn any_hits_image(
+        &self,
+        mode: TraceMode,
+        rays: &[Ray],
+        width: usize,
+        out: &mut [bool],
+        counters: Option<&mut [Counters]>,
+    ) {
+        let _ = width;
+        self.any_hits_in(mode, rays, out, counters);
+    }
     /// Closest hits of a batch (`out.len() == rays.len()`), no counting.
     fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         self.closest_hits_in(TraceMode::Single, rays, out, None);

@@ -12,7 +12,7 @@
 //! lines), `C = 2` 256 bytes (four), aligned to a cache line.
 
 use crate::geometry::Aabb;
-use crate::index::kit::box_tree::lanes::{F8, Lanes};
+use crate::index::kit::box_tree::lanes::F8;
 use crate::index::kit::box_tree::node::{Child, Node};
 use crate::index::kit::box_tree::slab::{SlabRay, hit_near_far};
 use glam::{Vec3A, Vec4};
@@ -70,6 +70,7 @@ impl<const C: usize> WideNode<C> {
     }
 
     /// Child `i`'s box.
+    #[inline(always)]
     pub fn child_box(&self, i: usize) -> Aabb {
         let (chunk, lane) = (i / 4, i % 4);
         let side = |s: usize| Vec3A::from_array([0, 1, 2].map(|k| self.planes[s][k][chunk][lane]));
@@ -87,11 +88,12 @@ impl<const C: usize> WideNode<C> {
             let p = unsafe { &*std::ptr::from_ref(&self.planes).cast::<[[[Vec4; 2]; 3]; 2]>() };
             let (near, far) = near_far(p, ray.near, F8::from_halves);
             let (mask, enter) = hit_near_far::<SAFE, F8>(near, far, ray, t_max);
-            (mask, enter.to_lanes())
+            (mask, enter.to_array())
         } else {
             let (near, far) = near_far(&self.planes, ray.near, |v: &[Vec4; C]| v[0]);
             let (mask, enter) = hit_near_far::<SAFE, Vec4>(near, far, ray, t_max);
-            (mask, Lanes::to_lanes(enter))
+            let [a, b, c, d] = enter.to_array();
+            (mask, [a, b, c, d, 0.0, 0.0, 0.0, 0.0])
         }
     }
 }

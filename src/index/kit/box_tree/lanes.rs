@@ -1,5 +1,6 @@
 //! The SIMD registers the slab tests are written over ([`Lanes`]): four `f32` lanes (glam's
-//! [`Vec4`], one SSE register) or eight ([`F8`], one AVX register, two [`Vec4`] without AVX).
+//! [`Vec4`], one SSE register), eight ([`F8`], one AVX register, two [`Vec4`] without AVX) or
+//! sixteen ([`F16`](super::lanes16::F16), one AVX-512 register, two [`F8`] without AVX-512).
 //!
 //! Every operation is the same instruction on every lane, with the SSE/AVX rules: `min(a, b)`
 //! and `max(a, b)` return `b` when the lanes compare equal (`+0` against `-0`) or either is NaN,
@@ -9,6 +10,9 @@
 use glam::Vec4;
 use std::ops::{Mul, Sub};
 
+/// The most lanes a [`Lanes`] register has: the length of the arrays it loads from and stores to.
+pub const MAX_LANES: usize = 16;
+
 /// A register of [`Lanes::WIDTH`] `f32` lanes.
 pub trait Lanes: Copy + Sub<Output = Self> + Mul<Output = Self> {
     /// Number of lanes.
@@ -16,9 +20,9 @@ pub trait Lanes: Copy + Sub<Output = Self> + Mul<Output = Self> {
     /// `x` in every lane.
     fn splat(x: f32) -> Self;
     /// Lanes `0..WIDTH` of `x`.
-    fn load(x: &[f32; 8]) -> Self;
+    fn load(x: &[f32; MAX_LANES]) -> Self;
     /// The lanes, in `0..WIDTH` of the array (the rest are 0).
-    fn to_lanes(self) -> [f32; 8];
+    fn to_lanes(self) -> [f32; MAX_LANES];
     /// Per lane `min(self, o)`, SSE rule (see the module doc).
     fn min(self, o: Self) -> Self;
     /// Per lane `max(self, o)`, SSE rule.
@@ -40,14 +44,15 @@ impl Lanes for Vec4 {
     }
 
     #[inline(always)]
-    fn load(x: &[f32; 8]) -> Self {
+    fn load(x: &[f32; MAX_LANES]) -> Self {
         Vec4::new(x[0], x[1], x[2], x[3])
     }
 
     #[inline(always)]
-    fn to_lanes(self) -> [f32; 8] {
-        let [a, b, c, d] = self.to_array();
-        [a, b, c, d, 0.0, 0.0, 0.0, 0.0]
+    fn to_lanes(self) -> [f32; MAX_LANES] {
+        let mut out = [0.0; MAX_LANES];
+        self.write_to_slice(&mut out[..4]);
+        out
     }
 
     #[inline(always)]
@@ -81,7 +86,7 @@ pub use eight::F8;
 /// Eight lanes in one AVX register.
 #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
 mod eight {
-    use super::Lanes;
+    use super::{Lanes, MAX_LANES};
     use glam::Vec4;
     use std::arch::x86_64::*;
     use std::ops::{Mul, Sub};
@@ -97,10 +102,19 @@ mod eight {
             // SAFETY: `[Vec4; 2]` is 8 contiguous f32; AVX is enabled at compile time.
             F8(unsafe { _mm256_loadu_ps(v.as_ptr().cast::<f32>()) })
         }
+
+        /// The eight lanes.
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 8] {
+            let mut out = [0.0; 8];
+            // SAFETY: `out` is 8 contiguous f32; AVX is enabled at compile time.
+            unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
     }
 
     // SAFETY (every `unsafe` below): AVX is enabled at compile time (this module's cfg), and
-    // the loads and stores go through arrays of exactly eight f32.
+    // the loads and stores go through arrays of at least eight f32.
     impl Sub for F8 {
         type Output = F8;
         #[inline(always)]
@@ -126,13 +140,13 @@ mod eight {
         }
 
         #[inline(always)]
-        fn load(x: &[f32; 8]) -> Self {
+        fn load(x: &[f32; MAX_LANES]) -> Self {
             F8(unsafe { _mm256_loadu_ps(x.as_ptr()) })
         }
 
         #[inline(always)]
-        fn to_lanes(self) -> [f32; 8] {
-            let mut out = [0.0; 8];
+        fn to_lanes(self) -> [f32; MAX_LANES] {
+            let mut out = [0.0; MAX_LANES];
             unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
             out
         }
@@ -170,7 +184,7 @@ mod eight {
 /// Eight lanes as two [`Vec4`] (targets without AVX): each half is [`Vec4`]'s operation.
 #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
 mod eight {
-    use super::Lanes;
+    use super::{Lanes, MAX_LANES};
     use glam::Vec4;
     use std::ops::{Mul, Sub};
 
@@ -183,6 +197,14 @@ mod eight {
         #[inline(always)]
         pub fn from_halves(v: &[Vec4; 2]) -> F8 {
             F8(*v)
+        }
+
+        /// The eight lanes.
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 8] {
+            let [a, b, c, d] = self.0[0].to_array();
+            let [e, f, g, h] = self.0[1].to_array();
+            [a, b, c, d, e, f, g, h]
         }
 
         #[inline(always)]
@@ -221,15 +243,15 @@ mod eight {
         }
 
         #[inline(always)]
-        fn load(x: &[f32; 8]) -> Self {
-            F8([Vec4::from_slice(&x[..4]), Vec4::from_slice(&x[4..])])
+        fn load(x: &[f32; MAX_LANES]) -> Self {
+            F8([Vec4::from_slice(&x[..4]), Vec4::from_slice(&x[4..8])])
         }
 
         #[inline(always)]
-        fn to_lanes(self) -> [f32; 8] {
-            let mut out = [0.0; 8];
+        fn to_lanes(self) -> [f32; MAX_LANES] {
+            let mut out = [0.0; MAX_LANES];
             self.0[0].write_to_slice(&mut out[..4]);
-            self.0[1].write_to_slice(&mut out[4..]);
+            self.0[1].write_to_slice(&mut out[4..8]);
             out
         }
 

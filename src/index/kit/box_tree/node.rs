@@ -65,6 +65,7 @@ impl Node {
     }
 
     /// The box of child `i` (0 or 1).
+    #[inline(always)]
     pub fn child_bounds(&self, i: usize) -> Aabb {
         let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
         Aabb::new(

@@ -1,13 +1,15 @@
 //! Packet traversal of the box trees (Wald, Slusallek, Benthin and Wagner 2001), one walk for
-//! the binary BVH and the wide ones (`bvh4`, `bvh8`): up to [`MAX_PACKET`] neighbouring rays
-//! walk the tree together, four in one SSE register per quantity, five to eight in one AVX
-//! register ([`Lanes`]). A node is fetched once per packet; an active mask (bit `k` for ray
-//! `k`) says which rays still need it. At an inner node each child's box is tested once for
-//! the whole packet ([`PacketTree::hit`], [`super::packet_slab`]: one SIMD pass per child, each
-//! lane exactly its ray's single-ray test, against that ray's best `t` so far); each hit child
-//! goes on with the mask of the active rays that hit it and their entries, the packet visits
-//! one first (see [`nearest_last`]) and pushes the others. At a leaf every active ray runs the
-//! single-ray leaf test ([`super::leaves::Leaves::closest`], [`super::leaves::Leaves::any`]).
+//! the binary BVH and the wide ones (`bvh4`, `bvh8`) and for both queries ([`LaneQuery`]:
+//! closest hits, any hit): up to [`MAX_PACKET`] neighbouring rays walk the tree together, four
+//! in one SSE register per quantity, five to eight in one AVX register ([`F8`]), nine to
+//! sixteen in one AVX-512 register ([`F16`]). A node is fetched once per packet; an active mask
+//! (bit `k` for ray `k`) says which rays still need it. At an inner node each child's box is
+//! tested once for the whole packet ([`PacketTree::hit`], [`super::packet_slab`]: one SIMD pass
+//! per child, each lane exactly its ray's single-ray test, against that ray's `t_max`: its best
+//! `t` so far for closest hits); each hit child goes on with the mask of the active rays that
+//! hit it and their entries, the packet visits one first (closest hits: [`nearest_last`]) and
+//! pushes the others. At a leaf every active ray runs the single-ray leaf test
+//! ([`super::leaves::Leaves::closest`], [`super::leaves::Leaves::any`]).
 //!
 //! Each ray keeps its own closest hit; a popped child keeps only the rays whose entry into it
 //! is not beyond their best `t` so far (one SIMD compare). Per ray this is exactly the
@@ -17,21 +19,28 @@
 //! order the packet visits the children in. Any-hit packets drop a ray from the mask at its
 //! first hit and stop when no ray is left.
 //!
+//! Hybrid switch ([`go_single`]): when fewer than half the lanes are active at a node, each of
+//! the active rays finishes the node's subtree alone with the single-ray loop from its state so far
+//! ([`LaneQuery::finish_alone`]), and the packet goes on with its stack.
+//!
 //! Counting: every active ray is charged a node visit per node and the node's box tests (as
 //! the single-ray step counts them) per inner node, so tests and steps per ray compare with
-//! single rays; with [`crate::index::NoStats`] the counting loops are empty and vanish.
+//! single rays; with [`crate::index::NoStats`] (zero-sized) the counting is skipped at compile
+//! time.
 //!
 //! Nothing is allocated: masks and best hits are arrays of [`MAX_PACKET`], the stack is fixed
 //! (`N` entries, the tree's single-ray bound: a level pushes at most as many children as the
 //! single-ray step does).
 
-use super::lanes::{F8, Lanes};
+use super::lanes::{F8, Lanes, MAX_LANES};
+use super::lanes16::F16;
 use super::node::Child;
-use super::packet_slab::{PacketRays, hit_box};
-use super::tree::{Rooted, Top};
-use crate::geometry::{Aabb, ClosestHit, Hit, Ray};
+use super::packet_query::{AnyLanes, ClosestLanes, LaneQuery, bits};
+use super::packet_slab::{PacketRays, hit_box, hit_box_by_sign};
+use super::tree::{BoxTree, Top};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::index::kit::stack::Stack;
-use crate::index::{AnyHit, Closest, MAX_PACKET, Stats};
+use crate::index::{MAX_PACKET, Stats};
 use crate::scene::Geometry;
 use glam::Vec4;
 
@@ -64,7 +73,7 @@ pub(crate) use tree_packets;
 
 /// A box tree as the packet walk sees it: nodes of up to `W` children, a stack bound of `N`
 /// entries (at most `W - 1` pushes per level).
-pub(crate) trait PacketTree<const W: usize, const N: usize>: Rooted {
+pub(crate) trait PacketTree<const W: usize, const N: usize>: BoxTree<N> {
     /// The box of child `i` of inner node `node` (`i` below [`PacketTree::boxes`]).
     fn child_box(&self, node: u32, i: usize) -> Aabb;
     /// Box tests of one ray at inner node `node`, as the single-ray step counts them: the
@@ -75,7 +84,9 @@ pub(crate) trait PacketTree<const W: usize, const N: usize>: Rooted {
 
     /// The packet slab test of inner node `node`'s children against each lane's `[t_min,
     /// t_max]`: per child `i`, the mask of the lanes that hit its box (0 for absent children)
-    /// and their entries (meaningful in the mask).
+    /// and their entries (meaningful in the mask). Packets whose rays agree on their direction
+    /// signs read each axis's planes by sign ([`hit_box_by_sign`]), the others take a min and a
+    /// max per axis ([`hit_box`]); both give every lane its single-ray decision and entry.
     #[inline(always)]
     fn hit<const SAFE: bool, V: Lanes>(
         &self,
@@ -88,32 +99,24 @@ pub(crate) trait PacketTree<const W: usize, const N: usize>: Rooted {
         for i in 0..self.boxes(node) as usize {
             let b = self.child_box(node, i);
             let (min, max) = (b.min.to_array(), b.max.to_array());
-            (masks[i], entries[i]) = hit_box::<SAFE, V>(min, max, rays, t_max);
+            (masks[i], entries[i]) = match rays.near() {
+                Some(near) => hit_box_by_sign::<SAFE, V>(min, max, near, rays, t_max),
+                None => hit_box::<SAFE, V>(min, max, rays, t_max),
+            };
         }
         (masks, entries)
     }
 }
 
-/// The set bits of `mask`, lowest first (rays of a ray mask, children of a child mask).
-#[inline(always)]
-fn bits(mut mask: u32) -> impl Iterator<Item = usize> {
-    std::iter::from_fn(move || {
-        (mask != 0).then(|| {
-            let k = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            k
-        })
-    })
-}
-
-/// Calls `f` on the counters of every ray in `active`: a loop of fixed length with no effect
-/// for [`crate::index::NoStats`], which the compiler removes.
+/// Calls `f` on the counters of every ray in `active`; nothing for zero-sized counters
+/// ([`crate::index::NoStats`] of the timed passes), decided at compile time.
 #[inline(always)]
 fn count<S: Stats>(active: u32, stats: &mut [S], f: impl Fn(&mut S)) {
-    for (k, s) in stats.iter_mut().enumerate() {
-        if active >> k & 1 == 1 {
-            f(s);
-        }
+    if std::mem::size_of::<S>() == 0 {
+        return;
+    }
+    for k in bits(active) {
+        f(&mut stats[k]);
     }
 }
 
@@ -163,6 +166,19 @@ fn nearest_last<const W: usize, V: Lanes>(
     (order, n)
 }
 
+/// The hit children (non-empty `masks`) in the order [`nearest_last`] returns them, unsorted:
+/// the lowest hit child visited first, the others pushed highest first (any hit).
+#[inline(always)]
+fn as_found<const W: usize>(masks: &[u32; W]) -> ([usize; W], usize) {
+    let mut order = [0usize; W];
+    let mut n = 0;
+    for c in (0..W).rev().filter(|&c| masks[c] != 0) {
+        order[n] = c;
+        n += 1;
+    }
+    (order, n)
+}
+
 /// The packet's slab constants, and the mask of the rays that enter the root's box (each ray's
 /// scalar root test, as the single-ray loop does it).
 #[inline(always)]
@@ -203,6 +219,23 @@ where
     (masks, entries)
 }
 
+const _: () = assert!(
+    MAX_PACKET == MAX_LANES,
+    "a packet's lanes fill one register"
+);
+
+/// Whether a packet of `V::WIDTH` lanes with `active` rays lets them finish alone (the hybrid
+/// switch of Benthin, Wald, Woop, Ernst and Mark 2012): when fewer than half its lanes are
+/// active, each remaining ray walks the current subtree with the single-ray loop. Half, because
+/// on bunny rays (one thread) it kept the coherent primary packets at their speed without the
+/// switch (thresholds of 4 and 8 of 16 measured within the intervals of 0) while bringing
+/// incoherent 16-ray packets from 0.25x of single rays (no switch) to about 0.8x (`bvh8`) and
+/// 1.1x (`bvh`); switching later (12 or 16 of 16) cost the primary packets of `bvh` a fifth.
+#[inline(always)]
+fn go_single<V: Lanes>(active: u32) -> bool {
+    2 * active.count_ones() < V::WIDTH as u32
+}
+
 /// Closest hits of a packet of at most [`MAX_PACKET`] rays (`out`, `stats` as long as `rays`).
 pub(crate) fn closest_hits<const W: usize, const N: usize, T, G, S>(
     tree: &T,
@@ -215,69 +248,7 @@ pub(crate) fn closest_hits<const W: usize, const N: usize, T, G, S>(
     G: Geometry,
     S: Stats,
 {
-    if rays.len() <= Vec4::WIDTH {
-        closest::<W, N, T, G, S, Vec4>(tree, geom, rays, out, stats);
-    } else {
-        closest::<W, N, T, G, S, F8>(tree, geom, rays, out, stats);
-    }
-}
-
-#[inline(always)]
-fn closest<const W: usize, const N: usize, T, G, S, V>(
-    tree: &T,
-    geom: &G,
-    rays: &[Ray],
-    out: &mut [Option<Hit>],
-    stats: &mut [S],
-) where
-    T: PacketTree<W, N>,
-    G: Geometry,
-    S: Stats,
-    V: Lanes,
-{
-    let top = tree.top();
-    let (packet, mut active) = start::<V, S>(&top, rays, stats);
-    let mut best: [ClosestHit; MAX_PACKET] =
-        std::array::from_fn(|k| ClosestHit::new(rays.get(k).map_or(0.0, |r| r.t_max)));
-    // Lane `k` of the packet tests' `t_max`: ray `k`'s best `t` so far.
-    let mut best_t = best.map(|b| b.t());
-    let mut stack = Stack::<(Child, u32, V), N>::new();
-    let mut at = top.root;
-    while active != 0 {
-        count(active, stats, S::node_visit);
-        if at.is_leaf() {
-            for k in bits(active) {
-                top.leaves
-                    .query::<Closest, G, S>(at, geom, &rays[k], &mut best[k], &mut stats[k]);
-                best_t[k] = best[k].t();
-            }
-        } else {
-            let t_max = V::load(&best_t);
-            let (masks, entries) = test_children(tree, at.index, active, &packet, t_max, stats);
-            let (order, n) = nearest_last(&masks, &entries);
-            if n > 0 {
-                for &c in &order[..n - 1] {
-                    stack.push((tree.child(at.index, c), masks[c], entries[c]));
-                }
-                let near = order[n - 1];
-                at = tree.child(at.index, near);
-                active = masks[near];
-                continue;
-            }
-        }
-        // Pop until a child some ray can still get a better or tied hit in.
-        active = 0;
-        while let Some((child, mask, entry)) = stack.pop() {
-            active = mask & entry.le(V::load(&best_t));
-            if active != 0 {
-                at = child;
-                break;
-            }
-        }
-    }
-    for (k, o) in out.iter_mut().enumerate() {
-        *o = best[k].get();
-    }
+    by_width::<ClosestLanes, W, N, T, G, S>(tree, geom, rays, out, stats);
 }
 
 /// Any-hit results of a packet of at most [`MAX_PACKET`] rays.
@@ -292,21 +263,41 @@ pub(crate) fn any_hits<const W: usize, const N: usize, T, G, S>(
     G: Geometry,
     S: Stats,
 {
-    if rays.len() <= Vec4::WIDTH {
-        any::<W, N, T, G, S, Vec4>(tree, geom, rays, out, stats);
-    } else {
-        any::<W, N, T, G, S, F8>(tree, geom, rays, out, stats);
-    }
+    by_width::<AnyLanes, W, N, T, G, S>(tree, geom, rays, out, stats);
 }
 
+/// The walk in the narrowest register that holds the packet: four lanes, eight or sixteen.
 #[inline(always)]
-fn any<const W: usize, const N: usize, T, G, S, V>(
+fn by_width<Q, const W: usize, const N: usize, T, G, S>(
     tree: &T,
     geom: &G,
     rays: &[Ray],
-    out: &mut [bool],
+    out: &mut [Q::Answer],
     stats: &mut [S],
 ) where
+    Q: LaneQuery,
+    T: PacketTree<W, N>,
+    G: Geometry,
+    S: Stats,
+{
+    match rays.len() {
+        0 => {}
+        1..=4 => walk::<Q, W, N, T, G, S, Vec4>(tree, geom, rays, out, stats),
+        5..=8 => walk::<Q, W, N, T, G, S, F8>(tree, geom, rays, out, stats),
+        _ => walk::<Q, W, N, T, G, S, F16>(tree, geom, rays, out, stats),
+    }
+}
+
+/// The packet walk of query `Q` in registers `V` (see the module doc).
+#[inline(always)]
+fn walk<Q, const W: usize, const N: usize, T, G, S, V>(
+    tree: &T,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [Q::Answer],
+    stats: &mut [S],
+) where
+    Q: LaneQuery,
     T: PacketTree<W, N>,
     G: Geometry,
     S: Stats,
@@ -314,49 +305,48 @@ fn any<const W: usize, const N: usize, T, G, S, V>(
 {
     let top = tree.top();
     let (packet, mut active) = start::<V, S>(&top, rays, stats);
-    let mut t_max = [0.0; MAX_PACKET];
-    for (t, r) in t_max.iter_mut().zip(rays) {
-        *t = r.t_max;
-    }
-    let t_max = V::load(&t_max);
-    out.fill(false);
-    let mut done = 0u32;
-    let mut stack = Stack::<(Child, u32), N>::new();
+    let mut q = Q::new(rays);
+    let mut stack = Stack::<(Child, u32, V), N>::new();
     let mut at = top.root;
     loop {
-        active &= !done;
+        active = q.needing(active);
+        if active != 0 && go_single::<V>(active) {
+            for k in bits(active) {
+                q.finish_alone(tree, geom, &rays[k], k, at, &mut stats[k]);
+            }
+            active = 0;
+        }
         if active != 0 {
             count(active, stats, S::node_visit);
             if at.is_leaf() {
-                for k in bits(active) {
-                    if top.leaves.query::<AnyHit, G, S>(
-                        at,
-                        geom,
-                        &rays[k],
-                        &mut false,
-                        &mut stats[k],
-                    ) {
-                        out[k] = true;
-                        done |= 1 << k;
-                    }
-                }
+                q.leaf(top.leaves, at, geom, rays, active, stats);
             } else {
-                let (masks, _) = test_children(tree, at.index, active, &packet, t_max, stats);
-                let mut hit = (0..W).filter(|&c| masks[c] != 0);
-                if let Some(first) = hit.next() {
-                    for c in hit {
-                        stack.push((tree.child(at.index, c), masks[c]));
+                let t_max = V::load(q.t_max());
+                let (masks, entries) = test_children(tree, at.index, active, &packet, t_max, stats);
+                let (order, n) = match Q::ORDERED {
+                    true => nearest_last(&masks, &entries),
+                    false => as_found(&masks),
+                };
+                if n > 0 {
+                    for &c in &order[..n - 1] {
+                        stack.push((tree.child(at.index, c), masks[c], entries[c]));
                     }
-                    at = tree.child(at.index, first);
-                    active = masks[first];
+                    let next = order[n - 1];
+                    at = tree.child(at.index, next);
+                    active = masks[next];
                     continue;
                 }
             }
         }
-        let Some((child, mask)) = stack.pop() else {
-            return;
-        };
-        at = child;
-        active = mask;
+        // Pop until a child some ray still needs.
+        active = 0;
+        while active == 0 {
+            let Some((child, mask, entry)) = stack.pop() else {
+                q.answers(out);
+                return;
+            };
+            active = q.keep(mask, entry);
+            at = child;
+        }
     }
 }

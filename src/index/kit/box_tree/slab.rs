@@ -147,6 +147,29 @@ pub(crate) fn slab_lanes<const SAFE: bool, V: Lanes>(
     clip::<SAFE, V>([nx, ny, nz], [fx, fy, fz], t_min, t_max)
 }
 
+/// [`slab_lanes`] with each axis's planes read by the rays' direction signs: lane `i` of
+/// `near[axis]` is the plane of lane `i`'s box its ray meets first ([`SlabRay::near`]), of
+/// `far[axis]` the other one. The entries and decisions of [`slab_lanes`] on the `min` and
+/// `max` planes (see the module doc), with one distance per plane and no min/max per axis.
+#[inline(always)]
+pub(crate) fn slab_lanes_by_sign<const SAFE: bool, V: Lanes>(
+    near: [V; 3],
+    far: [V; 3],
+    origin: [V; 3],
+    inv_dir: [V; 3],
+    t_min: V,
+    t_max: V,
+) -> (u32, V) {
+    let enter = |k: usize| plane_distances::<SAFE, V>(near[k], origin[k], inv_dir[k]).0;
+    let exit = |k: usize| plane_distances::<SAFE, V>(far[k], origin[k], inv_dir[k]).1;
+    clip::<SAFE, V>(
+        [enter(0), enter(1), enter(2)],
+        [exit(0), exit(1), exit(2)],
+        t_min,
+        t_max,
+    )
+}
+
 /// Tests both children's boxes against `[ray.t_min, t_max]`: bit 0 of the mask is set when child
 /// `a` is hit, bit 1 when `b` is; lanes 0 and 1 of the vector are their entry distances
 /// (meaningful for hit children only).
@@ -190,7 +213,7 @@ pub fn hit_near_far<const SAFE: bool, V: Lanes>(
 pub(crate) mod tests {
     use super::*;
     use crate::geometry::Aabb;
-    use crate::index::kit::box_tree::lanes::F8;
+    use crate::index::kit::box_tree::lanes::{F8, MAX_LANES};
     use crate::index::kit::box_tree::node::Child;
     use glam::{Vec3, Vec3A};
 
@@ -274,7 +297,7 @@ pub(crate) mod tests {
     pub(crate) fn near_far_lanes<V: Lanes>(boxes: &[Aabb], ray: &SlabRay) -> ([V; 3], [V; 3]) {
         let lanes = |side: [usize; 3]| {
             [0, 1, 2].map(|k| {
-                let mut a = [0.0; 8];
+                let mut a = [0.0; MAX_LANES];
                 for (i, b) in boxes.iter().enumerate().take(V::WIDTH) {
                     a[i] = [b.min, b.max][side[k]][k];
                 }
@@ -315,7 +338,7 @@ pub(crate) mod tests {
                 false => scalar(&b, &ray, t_max),
             });
             let sr = SlabRay::new(&ray);
-            let lanes = |(mask, enter): (u32, [f32; 8])| {
+            let lanes = |(mask, enter): (u32, [f32; MAX_LANES])| {
                 std::array::from_fn::<_, 8, _>(|i| (mask >> i & 1 == 1).then_some(enter[i]))
             };
             let four = |safe: bool, h: usize| {

@@ -48,11 +48,37 @@ pub fn query<Q: HitQuery, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     if !enters_root(tree, ray, stats) {
         return Q::answer(Q::start(ray));
     }
+    let root = tree.top().root;
+    Q::answer(finish::<Q, N, T, G, S>(
+        tree,
+        geom,
+        ray,
+        root,
+        Q::start(ray),
+        stats,
+    ))
+}
+
+/// The walk of query `Q` through the subtree `at`, going on from what was `found` before (the
+/// root and nothing, for [`query`]; a packet hands its rays over to it mid-tree): what it finds.
+#[inline(always)]
+pub(super) fn finish<Q: HitQuery, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
+    tree: &T,
+    geom: &G,
+    ray: &Ray,
+    at: Child,
+    found: Q::Found,
+    stats: &mut S,
+) -> Q::Found {
+    let mut stack = Stack::new();
+    let mut walk = Walk::<Q, N>::new(at, ray, &mut stack);
+    walk.found = found;
     if ray.fast_slabs() {
-        run::<false, Q, N, T, G, S>(tree, geom, ray, stats)
+        while walk.step::<false, T, G, S>(tree, geom, stats) {}
     } else {
-        run::<true, Q, N, T, G, S>(tree, geom, ray, stats)
+        while walk.step::<true, T, G, S>(tree, geom, stats) {}
     }
+    walk.found
 }
 
 /// The closest hit in `[ray.t_min, ray.t_max]`: [`query`] for [`Closest`].
@@ -64,19 +90,6 @@ pub fn closest_hit<const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
     stats: &mut S,
 ) -> Option<crate::geometry::Hit> {
     query::<Closest, N, T, G, S>(tree, geom, ray, stats)
-}
-
-#[inline(always)]
-fn run<const SAFE: bool, Q: HitQuery, const N: usize, T: BoxTree<N>, G: Geometry, S: Stats>(
-    tree: &T,
-    geom: &G,
-    ray: &Ray,
-    stats: &mut S,
-) -> Q::Answer {
-    let mut stack = Stack::new();
-    let mut walk = Walk::<Q, N>::new(tree.top().root, ray, &mut stack);
-    while walk.step::<SAFE, T, G, S>(tree, geom, stats) {}
-    walk.answer()
 }
 
 /// One ray's walk for query `Q` between two iterations of the loop: what [`query`] keeps.
