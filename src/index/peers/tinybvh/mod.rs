@@ -29,12 +29,28 @@ use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::per_primitive;
 use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
+use glam::Vec3A;
 use serde::{Deserialize, Serialize};
 
 /// `tinybvh-bvh8` has no parameters.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TinyBvhParams {}
+
+/// The shim's closest hit (`AccelbenchTinyHit`): `prim` is `u32::MAX` when there is none.
+#[repr(C)]
+struct ShimHit {
+    t: f32,
+    prim: u32,
+}
+
+/// The origin's and direction's lanes as the shim reads them: 16-byte aligned, four floats
+/// each (the fourth ignored).
+#[inline(always)]
+fn lanes(ray: &Ray) -> (*const f32, *const f32) {
+    let lane = |v: &Vec3A| (v as *const Vec3A).cast::<f32>();
+    (lane(&ray.origin), lane(&ray.dir))
+}
 
 /// tinybvh's `BVH8_CPU` with the meter of its allocations, opaque (owned by the C++ side).
 #[repr(C)]
@@ -57,9 +73,7 @@ unsafe extern "C" {
         origin: *const f32,
         dir: *const f32,
         t_max: f32,
-        t: *mut f32,
-        prim: *mut u32,
-    ) -> i32;
+    ) -> ShimHit;
     fn accelbench_tinybvh_occluded(
         h: *const Bvh8Cpu,
         origin: *const f32,
@@ -166,9 +180,9 @@ impl Index for TinyBvh8 {
     /// Rays whose coordinates overflow tinybvh's ray check (a sum of the origin, direction and
     /// `t`, NaN when components near 3.4e38 of both signs meet), on which it exits the process.
     fn refuses(ray: &Ray) -> Option<&'static str> {
-        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
-        // SAFETY: `o` and `d` hold 3 floats.
-        let refused = unsafe { accelbench_tinybvh_refuses(o.as_ptr(), d.as_ptr(), ray.t_max) };
+        let (o, d) = lanes(ray);
+        // SAFETY: `o` and `d` point at 16-byte aligned lanes of four floats.
+        let refused = unsafe { accelbench_tinybvh_refuses(o, d, ray.t_max) };
         (refused != 0).then_some(
             "its coordinates overflow tinybvh's ray check (the sum of origin, direction and t is \
              NaN), on which tinybvh exits the process",
@@ -183,27 +197,20 @@ impl Index for TinyBvh8 {
 
     #[inline]
     fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> Option<Hit> {
-        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
-        let (mut t, mut prim) = (0.0, 0);
-        // SAFETY: a live build; `o` and `d` hold 3 floats; the outputs are valid for writes.
-        let hit = unsafe {
-            accelbench_tinybvh_intersect(
-                self.bvh,
-                o.as_ptr(),
-                d.as_ptr(),
-                ray.t_max,
-                &mut t,
-                &mut prim,
-            )
-        };
-        (hit != 0).then_some(Hit { t, prim })
+        let (o, d) = lanes(ray);
+        // SAFETY: a live build; `o` and `d` point at 16-byte aligned lanes of four floats.
+        let hit = unsafe { accelbench_tinybvh_intersect(self.bvh, o, d, ray.t_max) };
+        (hit.prim != u32::MAX).then_some(Hit {
+            t: hit.t,
+            prim: hit.prim,
+        })
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> bool {
-        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
-        // SAFETY: a live build; `o` and `d` hold 3 floats.
-        unsafe { accelbench_tinybvh_occluded(self.bvh, o.as_ptr(), d.as_ptr(), ray.t_max) != 0 }
+        let (o, d) = lanes(ray);
+        // SAFETY: a live build; `o` and `d` point at 16-byte aligned lanes of four floats.
+        unsafe { accelbench_tinybvh_occluded(self.bvh, o, d, ray.t_max) != 0 }
     }
 
     fn info(&self) -> IndexInfo {

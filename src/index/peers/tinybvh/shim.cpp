@@ -2,16 +2,20 @@
 // nodes, leaves of up to four triangles) built, traced and freed through plain functions, so
 // the Rust side needs no C++ binding. Compiled by build.rs with the feature `tinybvh`.
 //
-// Rays are filled in here field by field instead of by tinybvh's Ray constructor, which
-// normalizes the direction: `t` stays in the caller's units (the direction as given).
+// Rays are written here in whole 16-byte lanes (`make_ray`) instead of by tinybvh's Ray
+// constructor, which normalizes the direction: `t` stays in the caller's units (the direction
+// as given). Origins and directions come as pointers to 16-byte aligned lanes of four floats
+// (glam's Vec3A on the Rust side), the fourth ignored.
 
 #define TINYBVH_IMPLEMENTATION
 #include "tiny_bvh.h"
 
+#include <immintrin.h>
+
 #include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <new>
 
 using tinybvh::BVH;
@@ -38,18 +42,29 @@ constexpr float kEmptyMin = 1e30f, kEmptyMax = 1.00001e30f;
 float max_ps(float a, float b) { return a > b ? a : b; }
 float min_ps(float a, float b) { return a < b ? a : b; }
 
-// The t below which `r` cannot reach an empty child slot: `t_max`, or just below the slot's entry.
-float below_empty_slots(const Ray& r, float t_max) {
-    float t1[3], t2[3];
-    for (int a = 0; a < 3; a++) {
-        const float rd = r.rD[a], ro = r.O[a] * rd;
-        const bool pos = r.D[a] >= 0;
-        t1[a] = std::fma(pos ? kEmptyMin : kEmptyMax, rd, -ro);
-        t2[a] = std::fma(pos ? kEmptyMax : kEmptyMin, rd, -ro);
-    }
+// The t below which a ray from `o` with reciprocal direction `rd` cannot reach an empty child
+// slot: `t_max`, or just below the slot's entry. Per axis BVH8_CPU's slab terms:
+// t1 = fma(near, rd, -(o * rd)), t2 = fma(far, rd, -(o * rd)), with `near` the slot's low
+// corner where the direction is positive (or +0) and its high corner otherwise.
+float below_empty_slots(__m128 o, __m128 d, __m128 rd, float t_max) {
+    const __m128 pos = _mm_cmpge_ps(d, _mm_setzero_ps());
+    const __m128 lo = _mm_set1_ps(kEmptyMin), hi = _mm_set1_ps(kEmptyMax);
+    const __m128 ro = _mm_mul_ps(o, rd);
+    alignas(16) float t1[4], t2[4];
+    _mm_store_ps(t1, _mm_fmsub_ps(_mm_blendv_ps(hi, lo, pos), rd, ro));
+    _mm_store_ps(t2, _mm_fmsub_ps(_mm_blendv_ps(lo, hi, pos), rd, ro));
     const float tmin = max_ps(max_ps(max_ps(0.0f, t1[0]), t1[1]), t1[2]);
     const float tmax = min_ps(min_ps(min_ps(t2[0], t_max), t2[1]), t2[2]);
     return tmin <= tmax ? std::nextafter(tmin, -INFINITY) : t_max;
+}
+
+// tinybvh_safercp on each lane: 1 / x where |x| > 1e-12, else BVH_FAR with the sign of x
+// (+BVH_FAR for -0, as `x >= 0` decides there).
+__m128 safercp(__m128 d) {
+    const __m128 abs = _mm_andnot_ps(_mm_set1_ps(-0.0f), d);
+    const __m128 far = _mm_blendv_ps(_mm_set1_ps(-BVH_FAR), _mm_set1_ps(BVH_FAR),
+                                     _mm_cmpge_ps(d, _mm_setzero_ps()));
+    return _mm_blendv_ps(far, _mm_div_ps(_mm_set1_ps(1.0f), d), _mm_cmpgt_ps(abs, _mm_set1_ps(1e-12f)));
 }
 
 // tinybvh's VALIDATE_RAY exits the process when this sum is NaN, which finite rays reach when
@@ -59,16 +74,32 @@ bool fails_validation(const Ray& r) {
     return std::isnan(test);
 }
 
-// tinybvh's ray for ours, with t (hit.t) set from `t_max` as above. Returns false when tinybvh
-// cannot take it (`fails_validation`): the caller answers a miss without tracing.
+// tinybvh's Ray: four 16-byte lanes (origin and mask; direction and instIdx; the reciprocal
+// direction and hit.inst; hit.t, u, v and prim), then 64 bytes of user data (hit.auxData and
+// the union), which the shim zeroes as tinybvh's constructor does.
+static_assert(sizeof(Ray) == 128 && alignof(Ray) == 64);
+static_assert(offsetof(Ray, O) == 0 && offsetof(Ray, mask) == 12 && offsetof(Ray, D) == 16);
+static_assert(offsetof(Ray, instIdx) == 28 && offsetof(Ray, rD) == 32);
+static_assert(offsetof(Ray, hit) + offsetof(tinybvh::Intersection, inst) == 44);
+static_assert(offsetof(Ray, hit) + offsetof(tinybvh::Intersection, t) == 48);
+static_assert(offsetof(Ray, hit) + offsetof(tinybvh::Intersection, prim) == 60);
+
+// tinybvh's ray for ours (`o` and `d`: 16-byte aligned lanes whose fourth float is ignored),
+// with t (hit.t) set from `t_max` as above, written in whole lanes (no field by field stores, no
+// memset call: this runs once per ray). Returns false when tinybvh cannot take it
+// (`fails_validation`): the caller answers a miss without tracing.
 bool make_ray(const float* o, const float* d, float t_max, Ray& r) {
-    std::memset(static_cast<void*>(&r), 0, sizeof(Ray));
-    r.O = bvhvec3(o[0], o[1], o[2]);
-    r.D = bvhvec3(d[0], d[1], d[2]);
-    r.rD = tinybvh::tinybvh_safercp(r.D);
-    r.mask = RAY_MASK_INTERSECT_ALL;
-    r.hit.t = below_empty_slots(r, t_max);
-    r.hit.prim = UINT32_MAX;
+    const __m128 xyz = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+    const __m128 ov = _mm_and_ps(_mm_load_ps(o), xyz), dv = _mm_and_ps(_mm_load_ps(d), xyz);
+    const __m128 rd = _mm_and_ps(safercp(dv), xyz);
+    const float t = below_empty_slots(ov, dv, rd, t_max);
+    float* lanes = reinterpret_cast<float*>(&r);
+    _mm_store_ps(lanes, _mm_or_ps(ov, _mm_castsi128_ps(_mm_set_epi32(RAY_MASK_INTERSECT_ALL, 0, 0, 0))));
+    _mm_store_ps(lanes + 4, dv);
+    _mm_store_ps(lanes + 8, rd);
+    _mm_store_ps(lanes + 12, _mm_blend_ps(_mm_castsi128_ps(_mm_set_epi32(-1, 0, 0, 0)), _mm_set_ss(t), 1));
+    _mm256_store_ps(lanes + 16, _mm256_setzero_ps());
+    _mm256_store_ps(lanes + 24, _mm256_setzero_ps());
     return !fails_validation(r);
 }
 
@@ -157,16 +188,20 @@ void accelbench_tinybvh_info(const AccelbenchTinyBvh* a, uint32_t* nodes, uint32
     *peak_bytes = a->meter.peak.load();
 }
 
-// The closest hit with t below `t_max`: returns 1 and writes `t` and `prim`, or returns 0.
-int accelbench_tinybvh_intersect(const AccelbenchTinyBvh* a, const float* o, const float* d, float t_max,
-                                 float* t, uint32_t* prim) {
+// A closest hit: `prim` is UINT32_MAX when there is none (the peers take fewer triangles).
+struct AccelbenchTinyHit {
+    float t;
+    uint32_t prim;
+};
+
+// The closest hit with t below `t_max`.
+AccelbenchTinyHit accelbench_tinybvh_intersect(const AccelbenchTinyBvh* a, const float* o,
+                                               const float* d, float t_max) {
     Ray r;
-    if (!make_ray(o, d, t_max, r)) return 0;
+    if (!make_ray(o, d, t_max, r)) return {0.0f, UINT32_MAX};
     const float t_start = r.hit.t;
     a->bvh.Intersect(r);
-    *t = r.hit.t;
-    *prim = r.hit.prim;
-    return r.hit.t < t_start ? 1 : 0;
+    return {r.hit.t, r.hit.t < t_start ? r.hit.prim : UINT32_MAX};
 }
 
 // Whether anything is hit with t below `t_max` (tinybvh stops at the first hit it finds).
