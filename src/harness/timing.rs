@@ -164,11 +164,26 @@ pub fn time_pass(
 ) -> Duration {
     let width = image_width(rays);
     let start = Instant::now();
-    match out {
-        PassOutput::Closest(out) => closest_in(index, mode, rays, width, out, None),
-        PassOutput::Any(out) => any_in(index, mode, rays, width, out, None),
-    }
+    trace_into(index, mode, rays, width, out, 0, None);
     start.elapsed()
+}
+
+/// Traces `rays` in `mode` (as an image of `width` columns when given) into the answers
+/// `from..from + rays.len()` of `out`, for `out`'s query, counting into `c` when given.
+fn trace_into(
+    index: &dyn TraceIndex,
+    mode: TraceMode,
+    rays: &[Ray],
+    width: Option<usize>,
+    out: &mut PassOutput,
+    from: usize,
+    c: Option<&mut [Counters]>,
+) {
+    let to = from + rays.len();
+    match out {
+        PassOutput::Closest(out) => closest_in(index, mode, rays, width, &mut out[from..to], c),
+        PassOutput::Any(out) => any_in(index, mode, rays, width, &mut out[from..to], c),
+    }
 }
 
 /// The counting pass: per-ray counters and the results, untimed.
@@ -202,29 +217,18 @@ pub fn counting_pass_in(
     };
     let mut counters = vec![Counters::default(); rays.len()];
     let slices = rays.chunks(slice).zip(counters.chunks_mut(slice));
-    let stopped = super::interrupt::requested;
-    match query {
-        Query::Closest => {
-            let mut out = vec![None; rays.len()];
-            for ((rays, c), out) in slices.zip(out.chunks_mut(slice)) {
-                if stopped() {
-                    break;
-                }
-                closest_in(index, mode, rays, width, out, Some(c));
-            }
-            (counters, out)
+    let mut out = PassOutput::new(query, rays.len());
+    for (k, (rays, c)) in slices.enumerate() {
+        if super::interrupt::requested() {
+            break;
         }
-        Query::Any => {
-            let mut out = vec![false; rays.len()];
-            for ((rays, c), out) in slices.zip(out.chunks_mut(slice)) {
-                if stopped() {
-                    break;
-                }
-                any_in(index, mode, rays, width, out, Some(c));
-            }
-            (counters, occluded(&out))
-        }
+        trace_into(index, mode, rays, width, &mut out, k * slice, Some(c));
     }
+    let hits = match out {
+        PassOutput::Closest(out) => out,
+        PassOutput::Any(out) => occluded(&out),
+    };
+    (counters, hits)
 }
 
 #[cfg(test)]

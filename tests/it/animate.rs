@@ -2,6 +2,8 @@
 //! refit say so, and `accelbench animate` writes a verified report per frame.
 
 use crate::common::cli::{accelbench_fails, accelbench_ok};
+#[cfg(unix)]
+use crate::common::cli::{interrupt_at, spawn_piped};
 use crate::common::{agreement_rays, assert_no_mismatch};
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::harness::verify::compare_indices;
@@ -205,47 +207,30 @@ fn animate_refuses_bad_motions_sets_and_frame_counts() {
 #[cfg(unix)]
 #[test]
 fn an_interrupted_animation_keeps_its_finished_frames() {
-    use std::io::BufRead;
-    use std::process::{Command, Stdio};
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("a");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(["animate", "--scene", "icosphere:n=200000", "--frames", "50"])
-        .args([
-            "--indices",
-            "bvh",
-            "--primary-size",
-            "16",
-            "--incoherent",
-            "100",
-        ])
-        .args([
-            "--repeats",
-            "1",
-            "--threads",
-            "1",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut seen = String::new();
-    while !seen.contains("frame 2/50 started") {
-        let mut line = String::new();
-        let n = stderr.read_line(&mut line).unwrap();
-        assert!(n > 0, "animate ended before its second frame:\n{seen}");
-        seen.push_str(&line);
-    }
-    // SAFETY: signals a child process this test started and has not reaped.
-    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
-    let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "{seen}{rest}");
+    let child = spawn_piped(&[
+        "animate",
+        "--scene",
+        "icosphere:n=200000",
+        "--frames",
+        "50",
+        "--indices",
+        "bvh",
+        "--primary-size",
+        "16",
+        "--incoherent",
+        "100",
+        "--repeats",
+        "1",
+        "--threads",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let early = "animate ended before its second frame";
+    let (code, seen, rest) = interrupt_at(child, "frame 2/50 started", early);
+    assert_eq!(code, Some(130), "{seen}{rest}");
     let meta = std::fs::read_to_string(out.join("meta.json")).unwrap();
     let meta: serde_json::Value = serde_json::from_str(&meta).unwrap();
     assert_eq!(meta["status"], "interrupted");

@@ -187,70 +187,61 @@ fn scene_spec(bytes: &[u8]) -> Result<(), String> {
     spec.generate().map(drop).map_err(|e| e.to_string())
 }
 
+/// The targets whose inputs are files: corpus folder, the scratch file's name (its extension
+/// picks the loader), and the reader.
+type FileReader = fn(&Scratch, &[u8]) -> Result<(), String>;
+const FILE_TARGETS: [(&str, &str, FileReader); 6] = [
+    ("obj", "m.obj", scene_file),
+    ("ply", "m.ply", scene_file),
+    ("glb", "m.glb", scene_file),
+    ("toml", "scene.toml", scene_file),
+    ("rays", "r.rays", rays_file),
+    ("hits", "h.hits", hits_file),
+];
+
+/// Loads `bytes` as an input of `target` (a file target through a fresh scratch file), its
+/// error as text.
+fn load_as(target: &str, bytes: &[u8]) -> Result<(), String> {
+    match FILE_TARGETS.iter().find(|(t, ..)| *t == target) {
+        Some((_, name, read)) => read(&Scratch::new(name), bytes),
+        None if target == "index-spec" => index_spec(bytes),
+        None => scene_spec(bytes),
+    }
+}
+
 #[test]
 fn every_corpus_input_is_as_its_name_says() {
-    let obj = Scratch::new("m.obj");
-    corpus_as_named("obj", |b| scene_file(&obj, b));
-    let ply = Scratch::new("m.ply");
-    corpus_as_named("ply", |b| scene_file(&ply, b));
-    let glb = Scratch::new("m.glb");
-    corpus_as_named("glb", |b| scene_file(&glb, b));
-    let toml = Scratch::new("scene.toml");
-    corpus_as_named("toml", |b| scene_file(&toml, b));
-    let rays = Scratch::new("r.rays");
-    corpus_as_named("rays", |b| rays_file(&rays, b));
-    let hits = Scratch::new("h.hits");
-    corpus_as_named("hits", |b| hits_file(&hits, b));
+    for (target, name, read) in FILE_TARGETS {
+        let s = Scratch::new(name);
+        corpus_as_named(target, |b| read(&s, b));
+    }
     corpus_as_named("index-spec", index_spec);
     corpus_as_named("scene-spec", scene_spec);
 }
 
-proptest! {
-    #![proptest_config(config())]
+/// A proptest per target (`test name: target`): mutated corpus inputs and arbitrary bytes
+/// never make its loader panic.
+macro_rules! never_panic {
+    ($($test:ident: $target:literal),* $(,)?) => {
+        proptest! {
+            #![proptest_config(config())]
+            $(
+                #[test]
+                fn $test(bytes in inputs($target)) {
+                    let _ = load_as($target, &bytes);
+                }
+            )*
+        }
+    };
+}
 
-    #[test]
-    fn obj_files_never_panic(bytes in inputs("obj")) {
-        let s = Scratch::new("m.obj");
-        let _ = scene_file(&s, &bytes);
-    }
-
-    #[test]
-    fn ply_files_never_panic(bytes in inputs("ply")) {
-        let s = Scratch::new("m.ply");
-        let _ = scene_file(&s, &bytes);
-    }
-
-    #[test]
-    fn glb_files_never_panic(bytes in inputs("glb")) {
-        let s = Scratch::new("m.glb");
-        let _ = scene_file(&s, &bytes);
-    }
-
-    #[test]
-    fn scene_files_never_panic(bytes in inputs("toml")) {
-        let s = Scratch::new("scene.toml");
-        let _ = scene_file(&s, &bytes);
-    }
-
-    #[test]
-    fn rays_files_never_panic(bytes in inputs("rays")) {
-        let s = Scratch::new("r.rays");
-        let _ = rays_file(&s, &bytes);
-    }
-
-    #[test]
-    fn hits_files_never_panic(bytes in inputs("hits")) {
-        let s = Scratch::new("h.hits");
-        let _ = hits_file(&s, &bytes);
-    }
-
-    #[test]
-    fn index_specs_never_panic(bytes in inputs("index-spec")) {
-        let _ = index_spec(&bytes);
-    }
-
-    #[test]
-    fn scene_specs_never_panic(bytes in inputs("scene-spec")) {
-        let _ = scene_spec(&bytes);
-    }
+never_panic! {
+    obj_files_never_panic: "obj",
+    ply_files_never_panic: "ply",
+    glb_files_never_panic: "glb",
+    scene_files_never_panic: "toml",
+    rays_files_never_panic: "rays",
+    hits_files_never_panic: "hits",
+    index_specs_never_panic: "index-spec",
+    scene_specs_never_panic: "scene-spec",
 }

@@ -12,7 +12,6 @@ use crate::common;
 use crate::common::cli::Suite;
 
 use accelbench::geometry::{Hit, TriangleKernelKind};
-use accelbench::harness::workload::{self, SetSizes};
 use accelbench::index::{BuildError, IndexSpec, TraceIndex, TraceMode, build_index};
 use accelbench::scene::{Scene, generators};
 
@@ -80,14 +79,13 @@ fn gpu_indices_are_never_wrong() {
                     "{what}: {c:?} of {} rays; allowed {allowed}",
                     rays.len()
                 );
-                let mut any = vec![false; rays.len()];
-                index.any_hits_in(TraceMode::Stream, rays, &mut any, None);
-                let differ = any
-                    .iter()
-                    .zip(&got)
-                    .filter(|(a, g)| **a != g.is_some())
-                    .count();
-                assert_eq!(differ, 0, "{what}: any-hit disagrees with its closest hit");
+                common::assert_any_hit_is_closest_hit(
+                    index.as_ref(),
+                    TraceMode::Stream,
+                    rays,
+                    &got,
+                    &what,
+                );
                 for k in [0, rays.len() / 2, rays.len() - 1] {
                     let alone = index.closest_hit(&rays[k]);
                     let bits = |h: Option<Hit>| h.map(|h| (h.prim, h.t.to_bits()));
@@ -98,31 +96,21 @@ fn gpu_indices_are_never_wrong() {
     }
 }
 
-/// The bunny's full protocol sets (1024 x 1024 primary, 1,048,576 incoherent rays, one batch
-/// each) and a batch of 1,007 rays (not a multiple of the workgroup size): no wrong hit. The
-/// reference is `bvh`, which returns brute force's hits bit for bit (`tests/it/agreement.rs`).
+/// The bunny's full protocol sets (`common::bunny_protocol_sets`) and a batch of 1,007 rays
+/// (not a multiple of the workgroup size): no wrong hit.
 #[test]
 fn gpu_indices_are_never_wrong_on_the_bunny_protocol_sets() {
     let Some(bunny) = common::bunny() else { return };
-    let sizes = SetSizes {
-        primary_side: 1024,
-        incoherent: 1 << 20,
-        ao_fraction: 0.05,
-    };
-    let reference = build("bvh", &bunny);
-    let incoherent = workload::incoherent(&bunny, &sizes);
-    let sets = [
-        ("primary", workload::primary(&bunny, &sizes).unwrap()),
-        ("1007 incoherent", incoherent[..1007].to_vec()),
-        ("incoherent", incoherent),
-    ];
-    for (set, rays) in &sets {
-        let expected = common::closest(reference.as_ref(), rays);
+    let mut sets = common::bunny_protocol_sets(&bunny);
+    let (_, incoherent, expected) = &sets[1];
+    let part = (incoherent[..1007].to_vec(), expected[..1007].to_vec());
+    sets.insert(1, ("1007 incoherent".to_owned(), part.0, part.1));
+    for (set, rays, expected) in &sets {
         for name in GPU_INDICES {
             let index = build(name, &bunny);
             let got = common::closest_in(index.as_ref(), TraceMode::Stream, rays);
             let what = format!("{name} {set}");
-            let c = judge(&what, &bunny, rays, &expected, &got);
+            let c = judge(&what, &bunny, rays, expected, &got);
             eprintln!("{what}, the bunny: {} rays, {c:?}", rays.len());
             assert_eq!(c.wrong, 0, "{what}: {c:?}");
         }
@@ -234,14 +222,9 @@ fn no_adapter_skips_gpu_indices_with_the_reason() {
         String::from_utf8_lossy(&output.stderr)
     );
     assert!(output.status.success(), "{text}");
-    let lines: Vec<&str> = text
-        .lines()
-        .filter(|l| l.contains("no GPU adapter found"))
-        .collect();
-    assert_eq!(lines.len(), 1, "{text}");
+    let line = common::cli::the_line_with(&text, "no GPU adapter found");
     assert!(
-        lines[0].contains("gpu-bvh2") && lines[0].contains("mesa-vulkan-drivers"),
-        "{}",
-        lines[0]
+        line.contains("gpu-bvh2") && line.contains("mesa-vulkan-drivers"),
+        "{line}"
     );
 }

@@ -9,7 +9,7 @@ use crate::common;
 
 use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::suite::{Shard, SuiteConfig, run_suite, run_suite_with};
-use accelbench::harness::workload::{self, RaySet, SetSizes};
+use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{
     BuildError, IndexSpec, Kind, TraceIndex, TraceMode, build_index, build_index_on, is_peer,
     kind_of, peer_names,
@@ -71,43 +71,23 @@ fn peers_trace_generated_triangle_scenes_close_to_brute_force() {
                 if robust_embree(name) {
                     assert!(c.wrong * 100 <= hits, "{what}: {c:?} of {hits} hits");
                 }
-                let mut any = vec![false; rays.len()];
-                index.any_hits_in(mode, &rays, &mut any, None);
-                let differ = any
-                    .iter()
-                    .zip(&got)
-                    .filter(|(a, g)| **a != g.is_some())
-                    .count();
-                assert_eq!(differ, 0, "{what}: any-hit disagrees with its closest hit");
+                common::assert_any_hit_is_closest_hit(index.as_ref(), mode, &rays, &got, &what);
             }
         }
     }
 }
 
-/// The bunny's full protocol sets (1024 x 1024 primary, 1,048,576 incoherent rays). The
-/// reference is `bvh`, which returns brute force's hits bit for bit (`tests/it/agreement.rs`), so
-/// every ray can be checked.
+/// The bunny's full protocol sets (`common::bunny_protocol_sets`: every ray can be checked).
 #[test]
 fn embree_is_never_wrong_on_the_bunny_protocol_sets() {
     let Some(bunny) = common::bunny() else { return };
-    let sizes = SetSizes {
-        primary_side: 1024,
-        incoherent: 1 << 20,
-        ao_fraction: 0.05,
-    };
-    let reference = build("bvh", &bunny);
-    let sets = [
-        ("primary", workload::primary(&bunny, &sizes).unwrap()),
-        ("incoherent", workload::incoherent(&bunny, &sizes)),
-    ];
-    for (set, rays) in &sets {
-        let expected = common::closest(reference.as_ref(), rays);
+    for (set, rays, expected) in &common::bunny_protocol_sets(&bunny) {
         for name in peers() {
             let index = build(name, &bunny);
             for mode in MODES.into_iter().filter(|m| index.traces_in(*m)) {
                 let got = common::closest_in(index.as_ref(), mode, rays);
                 let what = format!("{name} ({}) {set}", mode.label());
-                let c = judge(&what, &bunny, rays, &expected, &got);
+                let c = judge(&what, &bunny, rays, expected, &got);
                 eprintln!("{what}, the bunny: {} rays, {c:?}", rays.len());
                 if robust_embree(name) {
                     assert_eq!(c.wrong, 0, "{what}: {c:?}");

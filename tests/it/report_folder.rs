@@ -4,9 +4,9 @@
 //! `interrupted`.
 
 use crate::common::cli::{Suite, accelbench_fails};
-use std::io::BufRead;
+#[cfg(unix)]
+use crate::common::cli::{interrupt_at, spawn_piped};
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 /// A quick one-index run into `out`.
 fn quick_run(out: &Path) -> Suite {
@@ -91,42 +91,16 @@ fn a_folder_of_other_files_is_never_replaced() {
 fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("r");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(
-            Suite::run(
-                "icosphere:n=100,soup:n=300000,terrain:n=200",
-                "bvh",
-                "primary,incoherent",
-                &out,
-            )
-            .without("--quiet")
-            .args(),
-        )
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut seen = String::new();
-    loop {
-        let mut line = String::new();
-        let n = stderr.read_line(&mut line).unwrap();
-        assert!(
-            n > 0,
-            "the run ended before its first scene was done:\n{seen}"
-        );
-        seen.push_str(&line);
-        if line.contains("scene 1/3 done") {
-            break;
-        }
-    }
-    // SAFETY: signals a child process this test started and has not reaped.
-    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
-    let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "{seen}{rest}");
+    let run = Suite::run(
+        "icosphere:n=100,soup:n=300000,terrain:n=200",
+        "bvh",
+        "primary,incoherent",
+        &out,
+    )
+    .without("--quiet");
+    let early = "the run ended before its first scene was done";
+    let (code, seen, rest) = interrupt_at(spawn_piped(&run.args()), "scene 1/3 done", early);
+    assert_eq!(code, Some(130), "{seen}{rest}");
     assert!(rest.contains("interrupted"), "{rest}");
     assert_eq!(status_of(&out), "interrupted");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
@@ -156,13 +130,7 @@ fn interrupted(
     wait: std::time::Duration,
     within: std::time::Duration,
 ) -> (Option<i32>, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_accelbench"))
-        .args(run.args())
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = spawn_piped(&run.args());
     std::thread::sleep(wait);
     // SAFETY: signals a child process this test started and has not reaped.
     assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);

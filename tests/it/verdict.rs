@@ -3,10 +3,11 @@
 //! interleaves, and every mode returns brute force's hits.
 
 use crate::common;
+use common::call_log::CallLog;
 use common::drop_one::NoParams;
 
 use accelbench::geometry::triangle::Exact;
-use accelbench::geometry::{Aabb, Ray, TriangleKernelKind};
+use accelbench::geometry::{Ray, TriangleKernelKind};
 use accelbench::harness::suite::{IndexBuilder, Shard, SuiteConfig, SuiteResult, run_suite_with};
 use accelbench::harness::workload::{RaySet, SetSizes};
 use accelbench::index::{
@@ -16,10 +17,10 @@ use accelbench::index::{
 use accelbench::rays::incoherent_rays;
 use accelbench::report::suite_report::{RunMeta, write_suite_report};
 use accelbench::report::verdict::{verdict_text, verdicts};
-use accelbench::scene::{Geometry, GeometryWrapper, Scene, Triangles, generators};
+use accelbench::scene::{Geometry, Scene, Triangles, generators};
 use indicatif::ProgressBar;
 use scraper::{Html, Selector};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 /// The name the blind contender runs under: a registered peer, so the suite classifies its
 /// disagreements instead of failing the run.
@@ -186,37 +187,6 @@ fn the_same_index_on_the_same_rays_is_a_tie() {
     assert!(v[0].cell("bvh+last-hit").unwrap().starts_with("≈ "));
 }
 
-/// Triangles that log which ray each kernel call is for (the ray's position in `rays`, found
-/// by its origin's bits), so a test can see whether walks of different rays interleave.
-#[derive(Clone)]
-struct RayLog {
-    inner: Triangles<Exact>,
-    origins: Arc<Vec<[u32; 3]>>,
-    calls: Arc<Mutex<Vec<usize>>>,
-}
-
-impl GeometryWrapper for RayLog {
-    type Inner = Triangles<Exact>;
-    fn inner(&self) -> &Triangles<Exact> {
-        &self.inner
-    }
-}
-
-impl Geometry for RayLog {
-    fn len(&self) -> usize {
-        self.inner.len()
-    }
-    fn bounds(&self, prim: u32) -> Aabb {
-        self.inner.bounds(prim)
-    }
-    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
-        let o = ray.origin.to_array().map(f32::to_bits);
-        let i = self.origins.iter().position(|x| *x == o).unwrap();
-        self.calls.lock().unwrap().push(i);
-        self.inner.intersect(prim, ray, t_max)
-    }
-}
-
 /// Whether the kernel calls of one pass came ray after ray (never back to an earlier ray).
 fn one_ray_at_a_time(calls: &[usize]) -> bool {
     calls.windows(2).all(|w| w[0] <= w[1])
@@ -225,13 +195,18 @@ fn one_ray_at_a_time(calls: &[usize]) -> bool {
 fn kernel_call_order<I: BatchIndex>(mode: TraceMode) -> Vec<usize> {
     let scene = generators::generate("soup", 3000, 4).unwrap();
     let rays = incoherent_rays(&scene.ray_set_bounds(), 64, 3);
-    let geom = RayLog {
-        inner: Triangles::new(scene.triangles.clone().into()),
-        origins: Arc::new(
-            rays.iter()
-                .map(|r| r.origin.to_array().map(f32::to_bits))
-                .collect(),
-        ),
+    // Each call logs its ray's position in `rays`, found by its origin's bits.
+    let origins: Arc<Vec<[u32; 3]>> = Arc::new(
+        rays.iter()
+            .map(|r| r.origin.to_array().map(f32::to_bits))
+            .collect(),
+    );
+    let geom = CallLog {
+        inner: Triangles::<Exact>::new(scene.triangles.clone().into()),
+        note: move |_, ray: &Ray| {
+            let o = ray.origin.to_array().map(f32::to_bits);
+            origins.iter().position(|x| *x == o).unwrap()
+        },
         calls: Arc::default(),
     };
     let calls = geom.calls.clone();

@@ -112,8 +112,7 @@ pub struct Watertight;
 mod tests {
     use super::*;
     use crate::geometry::Triangle;
-    use crate::geometry::test_support::unit_floats;
-    use crate::geometry::triangle::lane_check::LaneTally;
+    use crate::geometry::triangle::lane_check::{check_decided_lanes, ray_origin, ray_target};
     use glam::{Vec3, Vec3A};
 
     /// Decided lanes equal the scalar kernel bit for bit on random triangles at several scales,
@@ -123,31 +122,13 @@ mod tests {
     /// only all occur.
     #[test]
     fn decided_lanes_equal_the_scalar_kernel() {
-        let mut unit = unit_floats(0x05ee_d0f1_a7e5);
-        let mut point = |scale: f32| Vec3A::new(unit(), unit(), unit()) * scale - scale / 2.0;
-        let mut tally = LaneTally::default();
-        for round in 0..40_000 {
-            let scale = [1.0, 1e3, 1e-3, 1e6][round % 4];
-            let tris: [Triangle; 4] =
-                std::array::from_fn(|_| Triangle::new(point(scale), point(scale), point(scale)));
-            let lanes = TriangleLanes::new(&tris[..1 + round % 4]);
-            let o = match round % 7 {
-                0 => tris[0].v[0] * 2.0 - tris[0].v[1],
-                _ => point(scale * 8.0),
-            };
-            let target = match round % 5 {
-                0 => tris[0].v[round % 3],
-                1 => (tris[0].v[1] + tris[0].v[2]) * 0.5,
-                // Beyond corner 0, outside the triangle: often no lane is hit.
-                2 => tris[0].v[0] * 2.0 - (tris[0].v[1] + tris[0].v[2]) * 0.5,
-                _ => tris[0].v[0] * 0.3 + tris[0].v[1] * 0.3 + tris[0].v[2] * 0.4,
-            };
+        let aim = |point: &mut dyn FnMut(f32) -> Vec3A, tris: &[Triangle; 4], scale, round| {
+            let o = ray_origin(point, tris, scale, round);
+            let target = ray_target(tris, round, round % 3);
             let (t_min, t_max) = [(0.0, f32::INFINITY), (-1.0, 1.5), (0.5, 0.9)][round % 3];
-            let Ok(ray) = Ray::new(o.into(), Vec3::from(target - o), t_min, t_max) else {
-                continue;
-            };
-            tally.check::<Watertight>(&Watertight::on_lanes(&lanes, &ray), &lanes, &ray);
-        }
-        tally.assert_all_outcomes();
+            Ray::new(o.into(), Vec3::from(target - o), t_min, t_max).ok()
+        };
+        let seed = 0x05ee_d0f1_a7e5;
+        check_decided_lanes::<Watertight>(seed, &[1.0, 1e3, 1e-3, 1e6], aim, Watertight::on_lanes);
     }
 }

@@ -21,6 +21,7 @@ pub use node::{BspKind, BspNode};
 
 use crate::geometry::Aabb;
 use crate::index::BuildError;
+use crate::index::kit::near_far::leaf_and_mailbox;
 use crate::index::kit::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::scene::Geometry;
 use glam::Vec3A;
@@ -112,16 +113,7 @@ impl Partition for BspNode {
         build::build(geom, root, pad, &params.limits(geom.len())?)
     }
 
-    fn mailbox(params: &BspParams) -> bool {
-        params.mailbox
-    }
-
-    fn leaf(&self) -> Option<(u32, u32)> {
-        match self.kind() {
-            BspKind::Leaf { first, count } => Some((first, count)),
-            BspKind::Interior { .. } => None,
-        }
-    }
+    leaf_and_mailbox!(BspKind);
 }
 
 impl Bsp {

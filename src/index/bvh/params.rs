@@ -9,13 +9,15 @@ use crate::index::build_budget::per_primitive;
 /// the plain tree holds about 200).
 pub const SPLIT_REF_BYTES: usize = 110;
 use serde::{Deserialize, Serialize};
+use std::fmt::Display;
+use std::ops::RangeInclusive;
 
 /// Smallest and largest number of SAH bins accepted.
-pub const BINS: std::ops::RangeInclusive<u32> = 2..=64;
+pub const BINS: RangeInclusive<u32> = 2..=64;
 /// Largest leaf size accepted (primitives per leaf).
 pub const MAX_LEAF_SIZE: u32 = 64;
 /// Accepted references per primitive with spatial splits (`split_budget`).
-pub const SPLIT_BUDGET: std::ops::RangeInclusive<f32> = 1.0..=64.0;
+pub const SPLIT_BUDGET: RangeInclusive<f32> = 1.0..=64.0;
 /// Largest traversal/intersection cost ratio accepted.
 pub const MAX_COST_RATIO: f32 = 1000.0;
 
@@ -164,52 +166,56 @@ impl BvhParams {
 
     /// The preset with the overrides applied, or an error saying which value is out of range.
     pub fn config(&self) -> Result<BuildConfig, BuildError> {
-        let bad = |message: String| BuildError::Params {
-            index: "bvh".into(),
-            message,
-        };
         let mut c = self.preset.config();
         if let Some(split) = self.split {
             c.split = split;
         }
         c.spatial_splits = self.spatial_splits;
         if let Some(b) = self.split_budget {
-            if !SPLIT_BUDGET.contains(&b) {
-                return Err(bad(format!(
-                    "split_budget = {b} is out of range: use {} to {} references per primitive",
-                    SPLIT_BUDGET.start(),
-                    SPLIT_BUDGET.end()
-                )));
-            }
-            c.split_budget = b;
+            c.split_budget = in_range(
+                "split_budget",
+                b,
+                &SPLIT_BUDGET,
+                " references per primitive",
+            )?;
         }
         if let Some(bins) = self.bins {
-            if !BINS.contains(&bins) {
-                return Err(bad(format!(
-                    "bins = {bins} is out of range: use {} to {}",
-                    BINS.start(),
-                    BINS.end()
-                )));
-            }
-            c.bins = bins;
+            c.bins = in_range("bins", bins, &BINS, "")?;
         }
         if let Some(leaf) = self.leaf_size {
-            if !(1..=MAX_LEAF_SIZE).contains(&leaf) {
-                return Err(bad(format!(
-                    "leaf_size = {leaf} is out of range: use 1 to {MAX_LEAF_SIZE}"
-                )));
-            }
-            c.leaf_size = leaf;
+            c.leaf_size = in_range("leaf_size", leaf, &(1..=MAX_LEAF_SIZE), "")?;
         }
         if let Some(r) = self.cost_ratio {
             if !(r > 0.0 && r <= MAX_COST_RATIO) {
-                return Err(bad(format!(
-                    "cost_ratio = {r} is out of range: use a number > 0 and <= {MAX_COST_RATIO}"
-                )));
+                let accepted = format!("a number > 0 and <= {MAX_COST_RATIO}");
+                return Err(out_of_range("cost_ratio", r, accepted));
             }
             c.cost_ratio = r;
         }
         Ok(c)
+    }
+}
+
+/// `value` of parameter `name` if `range` holds it, else the error saying to use `range`
+/// (`"1 to 64"`, followed by `unit`).
+fn in_range<T: PartialOrd + Display>(
+    name: &str,
+    value: T,
+    range: &RangeInclusive<T>,
+    unit: &str,
+) -> Result<T, BuildError> {
+    if !range.contains(&value) {
+        let accepted = format!("{} to {}{unit}", range.start(), range.end());
+        return Err(out_of_range(name, value, accepted));
+    }
+    Ok(value)
+}
+
+/// The error for `value` of parameter `name`, saying what to use instead (`accepted`).
+fn out_of_range(name: &str, value: impl Display, accepted: String) -> BuildError {
+    BuildError::Params {
+        index: "bvh".into(),
+        message: format!("{name} = {value} is out of range: use {accepted}"),
     }
 }
 

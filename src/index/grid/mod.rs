@@ -17,9 +17,8 @@ pub use layout::Layout;
 pub use resolution::{DEFAULT_LAMBDA, MAX_CELLS, check_lambda, heuristic_resolution};
 
 use crate::geometry::{Aabb, Ray};
-use crate::index::build_budget::per_primitive;
-use crate::index::kit::cell_walk::{CellVisit, CellWalk, query_cells};
-use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_index};
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 pub(crate) use build::{Cells, MAX_REFS, fill_cells, fill_cells_with};
 use serde::{Deserialize, Serialize};
@@ -140,16 +139,9 @@ impl Index for Grid {
         })
     }
 
-    #[inline]
-    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
-        query_cells::<Q, _, _, _>(self, g, r, s)
-    }
-
-    /// About 120 B per primitive measured (soup, bunny, icosphere), with a margin; long thin
-    /// primitives span more cells, and the fill checks the budget as it goes.
-    fn estimated_build_bytes(prims: usize, _: &GridParams) -> Option<usize> {
-        per_primitive(prims, 140)
-    }
+    // The build's peak heap a primitive: about 120 B measured (soup, bunny, icosphere), with a
+    // margin; long thin primitives span more cells, and the fill checks the budget as it goes.
+    cell_walk_index!(140);
 
     fn info(&self) -> IndexInfo {
         let cells = self.layout.cell_count();

@@ -24,9 +24,8 @@ mod build;
 
 use super::grid::{Dda, Layout, check_lambda, finite_bounds};
 use crate::geometry::Ray;
-use crate::index::build_budget::per_primitive;
-use crate::index::kit::cell_walk::{CellVisit, CellWalk, query_cells};
-use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
+use crate::index::kit::cell_walk::{CellVisit, CellWalk, cell_walk_index};
+use crate::index::{BatchIndex, BuildError, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
 use build::{Levels, NO_INNER, build_levels};
 use serde::{Deserialize, Serialize};
@@ -135,16 +134,9 @@ impl Index for Grid2 {
         })
     }
 
-    #[inline]
-    fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
-        query_cells::<Q, _, _, _>(self, g, r, s)
-    }
-
-    /// About 70 B per primitive measured (soup, bunny, icosphere), with a margin; long thin
-    /// primitives span more cells, and the fill checks the budget as it goes.
-    fn estimated_build_bytes(prims: usize, _: &Grid2Params) -> Option<usize> {
-        per_primitive(prims, 80)
-    }
+    // The build's peak heap a primitive: about 70 B measured (soup, bunny, icosphere), with a
+    // margin; long thin primitives span more cells, and the fill checks the budget as it goes.
+    cell_walk_index!(80);
 
     fn info(&self) -> IndexInfo {
         let l = &self.levels;

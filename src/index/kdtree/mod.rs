@@ -29,6 +29,7 @@ pub use node::{KdKind, KdNode};
 
 use crate::geometry::Aabb;
 use crate::index::BuildError;
+use crate::index::kit::near_far::leaf_and_mailbox;
 use crate::index::kit::near_far::{BuildResult, NearFarIndex, Partition, SahParams};
 use crate::scene::Geometry;
 use serde::{Deserialize, Serialize};
@@ -110,16 +111,7 @@ impl Partition for KdNode {
         parallel::build(geom, root, pad, &sah, binning)
     }
 
-    fn mailbox(params: &KdParams) -> bool {
-        params.mailbox
-    }
-
-    fn leaf(&self) -> Option<(u32, u32)> {
-        match self.kind() {
-            KdKind::Leaf { first, count } => Some((first, count)),
-            KdKind::Interior { .. } => None,
-        }
-    }
+    leaf_and_mailbox!(KdKind);
 }
 
 impl KdTree {

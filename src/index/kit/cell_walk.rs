@@ -79,3 +79,25 @@ pub fn query_cells<Q: HitQuery, W: CellWalk, G: Geometry, S: Stats>(
         Q::answer(found)
     })
 }
+
+/// The [`crate::index::Index`] methods every [`CellWalk`] structure shares, inside its `impl
+/// Index`: `query` is the cell walk's ([`query_cells`]), and the build's peak heap is estimated
+/// at `$bytes_per_prim` bytes a primitive ([`crate::index::build_budget::per_primitive`]).
+macro_rules! cell_walk_index {
+    ($bytes_per_prim:expr) => {
+        #[inline]
+        fn query<Q, G, S>(&self, g: &G, r: &$crate::geometry::Ray, s: &mut S) -> Q::Answer
+        where
+            Q: $crate::index::HitQuery,
+            G: $crate::scene::Geometry,
+            S: $crate::index::Stats,
+        {
+            $crate::index::kit::cell_walk::query_cells::<Q, _, _, _>(self, g, r, s)
+        }
+
+        fn estimated_build_bytes(prims: usize, _: &Self::Params) -> Option<usize> {
+            $crate::index::build_budget::per_primitive(prims, $bytes_per_prim)
+        }
+    };
+}
+pub(crate) use cell_walk_index;

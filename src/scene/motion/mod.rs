@@ -55,3 +55,13 @@ pub fn frame_geometry(scene: &Scene, motion: &dyn Motion, t: f32) -> SceneGeomet
         shapes: Arc::from(scene.shapes.as_slice()),
     }
 }
+
+/// Where `x` lies from `min` to `max`, as a fraction (0 at `min`, 1 at `max`), or `flat` when
+/// the extent `max - min` is not positive.
+fn fraction(x: f32, min: f32, max: f32, flat: f32) -> f32 {
+    let extent = max - min;
+    match extent > 0.0 {
+        true => (x - min) / extent,
+        false => flat,
+    }
+}

@@ -105,26 +105,24 @@ mod tests {
 
     #[test]
     fn parses_defaults_parameters_and_refuses_bad_ones() {
-        let t: MotionSpec = "twist".parse().unwrap();
-        assert_eq!(t, MotionSpec::Twist(Twist { turns: 0.25 }));
-        let w: MotionSpec = "wave:waves=3, amplitude=0.1".parse().unwrap();
-        assert_eq!(
-            w,
-            MotionSpec::Wave(Wave {
-                amplitude: 0.1,
-                waves: 3.0
-            })
-        );
-        assert_eq!(w.to_string().parse::<MotionSpec>().unwrap(), w);
-        let c: MotionSpec = "cloth:ball=0.25".parse().unwrap();
-        assert_eq!(
-            c,
-            MotionSpec::Cloth(Cloth {
-                drop: 0.5,
-                ball: 0.25
-            })
-        );
-        assert_eq!(c.to_string().parse::<MotionSpec>().unwrap(), c);
+        let twist = MotionSpec::Twist(Twist { turns: 0.25 });
+        let wave = MotionSpec::Wave(Wave {
+            amplitude: 0.1,
+            waves: 3.0,
+        });
+        let cloth = MotionSpec::Cloth(Cloth {
+            drop: 0.5,
+            ball: 0.25,
+        });
+        for (text, spec) in [
+            ("twist", twist),
+            ("wave:waves=3, amplitude=0.1", wave),
+            ("cloth:ball=0.25", cloth),
+        ] {
+            let parsed: MotionSpec = text.parse().unwrap();
+            assert_eq!(parsed, spec, "{text}");
+            assert_eq!(parsed.to_string().parse::<MotionSpec>().unwrap(), parsed);
+        }
         for (bad, says) in [
             ("spin", "unknown motion 'spin'"),
             ("twist:angle=3", "has no parameter 'angle'"),

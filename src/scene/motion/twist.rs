@@ -3,7 +3,7 @@
 //! `turns * 360°` at the top at the last frame (`t = 1`): a mesh is wrung like a towel, and a
 //! tree built on the first frame loosens as it turns.
 
-use super::Motion;
+use super::{Motion, fraction};
 use crate::geometry::Aabb;
 use glam::Vec3A;
 use std::f32::consts::TAU;
@@ -17,11 +17,7 @@ pub struct Twist {
 impl Motion for Twist {
     /// At angle 0 (the bottom, or `t = 0`) the point is returned unchanged, bit for bit.
     fn place(&self, p: Vec3A, rest: &Aabb, t: f32) -> Vec3A {
-        let height = rest.max.y - rest.min.y;
-        let up = match height > 0.0 {
-            true => (p.y - rest.min.y) / height,
-            false => 1.0,
-        };
+        let up = fraction(p.y, rest.min.y, rest.max.y, 1.0);
         let angle = TAU * self.turns * t * up;
         if angle == 0.0 {
             return p;

@@ -3,7 +3,7 @@
 //! diagonal times `sin(2π (waves u - t))`: one period over the frames, so the last frame
 //! equals the first. A terrain waves like water; a closed mesh wobbles.
 
-use super::Motion;
+use super::{Motion, fraction};
 use crate::geometry::Aabb;
 use glam::Vec3A;
 use std::f32::consts::TAU;
@@ -18,11 +18,7 @@ pub struct Wave {
 
 impl Motion for Wave {
     fn place(&self, p: Vec3A, rest: &Aabb, t: f32) -> Vec3A {
-        let width = rest.max.x - rest.min.x;
-        let u = match width > 0.0 {
-            true => (p.x - rest.min.x) / width,
-            false => 0.0,
-        };
+        let u = fraction(p.x, rest.min.x, rest.max.x, 0.0);
         let lift = self.amplitude * rest.extent().length() * (TAU * (self.waves * u - t)).sin();
         Vec3A::new(p.x, p.y + lift, p.z)
     }

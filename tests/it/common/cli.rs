@@ -38,9 +38,11 @@ pub fn accelbench_fails(args: &[&str], expected: &[&str]) {
 }
 
 /// Runs `accelbench sweep INDEX --scene SCENE --size 24 --repeats 1` over the sweep options
-/// `points` into `out`, asserts a zero exit, one CSV row per point (`rows` of them) and both
-/// charts of the primary rays, and returns `primary.csv`.
-pub fn small_sweep(index: &str, scene: &str, points: &[&str], rows: usize, out: &Path) -> String {
+/// `points` into a scratch folder, and asserts a zero exit, one CSV row per point (`rows` of
+/// them), a row containing every string of `row_with`, and both charts of the primary rays.
+pub fn small_sweep(index: &str, scene: &str, points: &[&str], rows: usize, row_with: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s");
     let head = [
         "sweep",
         index,
@@ -57,7 +59,10 @@ pub fn small_sweep(index: &str, scene: &str, points: &[&str], rows: usize, out: 
     }
     let csv = std::fs::read_to_string(out.join("primary.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + rows, "{csv}");
-    csv
+    assert!(
+        csv.lines().any(|l| row_with.iter().all(|w| l.contains(w))),
+        "{csv}"
+    );
 }
 
 /// `../shared/meshes/<name>` when present; otherwise `None`, with a line saying the test part
@@ -165,4 +170,52 @@ impl Suite {
 pub fn write_rays(out: &Path, scene: &str, set: &str, amount: &[&str]) {
     let head = ["rays", "--scene", scene, "--set", set, "--out"];
     accelbench_ok(&[&head[..], &[out.to_str().unwrap()], amount].concat());
+}
+
+/// The one line of a command's output `text` that contains `needle`; fails (showing `text`)
+/// unless exactly one does.
+pub fn the_line_with<'a>(text: &'a str, needle: &str) -> &'a str {
+    let lines: Vec<&str> = text.lines().filter(|l| l.contains(needle)).collect();
+    assert_eq!(lines.len(), 1, "{text}");
+    lines[0]
+}
+
+/// accelbench started with `args` in the crate's folder, its standard output dropped and its
+/// standard error piped (for tests that interrupt it).
+pub fn spawn_piped(args: &[&str]) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_accelbench"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// Sends `child` (from [`spawn_piped`]) a SIGINT as soon as a line of its standard error
+/// contains `cue`, failing with `early` and what it said if it ends first; returns its exit
+/// code and its standard error before and after the signal.
+#[cfg(unix)]
+pub fn interrupt_at(
+    mut child: std::process::Child,
+    cue: &str,
+    early: &str,
+) -> (Option<i32>, String, String) {
+    use std::io::BufRead;
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut seen = String::new();
+    loop {
+        let mut line = String::new();
+        let n = stderr.read_line(&mut line).unwrap();
+        assert!(n > 0, "{early}:\n{seen}");
+        seen.push_str(&line);
+        if line.contains(cue) {
+            break;
+        }
+    }
+    // SAFETY: signals a child process this test started and has not reaped.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    (child.wait().unwrap().code(), seen, rest)
 }

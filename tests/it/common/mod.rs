@@ -3,6 +3,7 @@
 //! the whole registry).
 #![allow(dead_code)]
 
+pub mod call_log;
 pub mod checksum;
 pub mod cli;
 pub mod drop_one;
@@ -203,6 +204,46 @@ pub fn assert_mode_agrees(mode: accelbench::index::TraceMode) {
             assert_eq!(wrong, 0, "{what} any-hit on {}: {wrong} wrong", scene.name);
         }
     }
+}
+
+/// The bunny's full protocol sets (1024 x 1024 primary, 1,048,576 incoherent rays, one batch
+/// each) as `(set, rays, expected)`: the expected hits are `bvh`'s (exact kernel), which are
+/// brute force's bit for bit (`tests/it/agreement.rs`), so every ray can be checked.
+pub fn bunny_protocol_sets(bunny: &Scene) -> Vec<(String, Vec<Ray>, Vec<Option<Hit>>)> {
+    let sizes = accelbench::harness::workload::SetSizes {
+        primary_side: 1024,
+        incoherent: 1 << 20,
+        ao_fraction: 0.05,
+    };
+    let reference = build("bvh", bunny, TriangleKernelKind::Exact);
+    let primary = accelbench::harness::workload::primary(bunny, &sizes).unwrap();
+    let incoherent = accelbench::harness::workload::incoherent(bunny, &sizes);
+    [("primary", primary), ("incoherent", incoherent)]
+        .into_iter()
+        .map(|(set, rays)| {
+            let expected = closest(reference.as_ref(), &rays);
+            (set.to_owned(), rays, expected)
+        })
+        .collect()
+}
+
+/// Asserts that `index`'s any-hit answers for `rays` traced in `mode` are its closest hits
+/// `got` (of the same rays) made boolean; `what` names the case.
+pub fn assert_any_hit_is_closest_hit(
+    index: &dyn TraceIndex,
+    mode: accelbench::index::TraceMode,
+    rays: &[Ray],
+    got: &[Option<Hit>],
+    what: &str,
+) {
+    let mut any = vec![false; rays.len()];
+    index.any_hits_in(mode, rays, &mut any, None);
+    let differ = any
+        .iter()
+        .zip(got)
+        .filter(|(a, g)| **a != g.is_some())
+        .count();
+    assert_eq!(differ, 0, "{what}: any-hit disagrees with its closest hit");
 }
 
 /// Builds `spec` over `scene` with the triangle kernel `kernel`.

@@ -2,14 +2,15 @@
 //! in and through split planes, and a geometry that records every kernel call.
 #![allow(dead_code)]
 
+use crate::common::call_log::CallLog;
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Aabb, Ray, Triangle, TriangleKernelKind};
 use accelbench::index::kit::near_far::{NearFarIndex, Partition};
 use accelbench::index::{BuildError, Counters, Index, IndexSpec, build_index, build_index_on};
 use accelbench::rays::SplitMix64;
-use accelbench::scene::{Geometry, GeometryWrapper, Scene, Triangles, generators};
+use accelbench::scene::{Scene, Triangles, generators};
 use glam::{Vec3, Vec3A};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 /// Scenes that have broken naive builders: all one triangle, zero-area triangles (points and
 /// segments), many triangles sharing one centroid, all in one plane.
@@ -140,39 +141,16 @@ pub fn rays_through_plane_crossings(planes: &[(usize, f32)], b: &Aabb, n: usize)
     rays
 }
 
-/// Triangles with the watertight kernel that record every kernel call.
-#[derive(Clone)]
-pub struct Recording {
-    inner: Triangles<Watertight>,
-    pub calls: Arc<Mutex<Vec<u32>>>,
-}
+/// Triangles with the watertight kernel that record the primitive of every kernel call.
+pub type Recording = CallLog<Watertight, u32, fn(u32, &Ray) -> u32>;
 
 impl Recording {
     pub fn new(scene: &Scene) -> Recording {
-        Recording {
+        CallLog {
             inner: Triangles::new(Arc::from(scene.triangles.as_slice())),
+            note: |prim, _| prim,
             calls: Arc::default(),
         }
-    }
-}
-
-impl GeometryWrapper for Recording {
-    type Inner = Triangles<Watertight>;
-    fn inner(&self) -> &Triangles<Watertight> {
-        &self.inner
-    }
-}
-
-impl Geometry for Recording {
-    fn len(&self) -> usize {
-        self.inner.len()
-    }
-    fn bounds(&self, prim: u32) -> Aabb {
-        self.inner.bounds(prim)
-    }
-    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
-        self.calls.lock().unwrap().push(prim);
-        self.inner.intersect(prim, ray, t_max)
     }
 }
 

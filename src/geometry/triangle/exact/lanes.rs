@@ -114,16 +114,9 @@ pub fn portable(tris: &TriangleLanes, ray: &Ray) -> LaneHits {
 mod tests {
     use super::*;
     use crate::geometry::Triangle;
-    use crate::geometry::test_support::unit_floats;
     use crate::geometry::triangle::Exact;
-    use crate::geometry::triangle::lane_check::LaneTally;
+    use crate::geometry::triangle::lane_check::{check_decided_lanes, ray_target};
     use glam::{Vec3, Vec3A};
-
-    /// Points uniform in the cube `[-scale / 2, scale / 2]^3`, from a fixed seed.
-    fn points(seed: u64) -> impl FnMut(f32) -> Vec3A {
-        let mut unit = unit_floats(seed);
-        move |scale| Vec3A::new(unit(), unit(), unit()) * scale - scale / 2.0
-    }
 
     /// Decided lanes equal the scalar kernel bit for bit, on random triangles and rays aimed at
     /// their corners and edges (where the filter hands lanes to the scalar kernel) and beside
@@ -131,27 +124,17 @@ mod tests {
     /// misses only occur.
     #[test]
     fn decided_lanes_equal_the_scalar_kernel() {
-        let mut point = points(0x1234_5678_9abc_def1);
-        let mut tally = LaneTally::default();
-        for round in 0..40_000 {
-            let scale = [1.0, 1e3, 1e-3][round % 3];
-            let tris: [Triangle; 4] =
-                std::array::from_fn(|_| Triangle::new(point(scale), point(scale), point(scale)));
-            let lanes = TriangleLanes::new(&tris[..1 + round % 4]);
+        let aim = |point: &mut dyn FnMut(f32) -> Vec3A, tris: &[Triangle; 4], scale, round| {
             let o = point(scale * 8.0);
-            let target = match round % 5 {
-                0 => tris[0].v[0],
-                1 => (tris[0].v[1] + tris[0].v[2]) * 0.5,
-                // Beyond corner 0, outside the triangle: often no lane is hit.
-                2 => tris[0].v[0] * 2.0 - (tris[0].v[1] + tris[0].v[2]) * 0.5,
-                _ => tris[0].v[0] * 0.3 + tris[0].v[1] * 0.3 + tris[0].v[2] * 0.4,
-            };
-            let Ok(ray) = Ray::new(o.into(), Vec3::from(target - o), 0.0, f32::INFINITY) else {
-                continue;
-            };
-            tally.check::<Exact>(&intersect_lanes(&lanes, &ray), &lanes, &ray);
-        }
-        tally.assert_all_outcomes();
+            let target = ray_target(tris, round, 0);
+            Ray::new(o.into(), Vec3::from(target - o), 0.0, f32::INFINITY).ok()
+        };
+        check_decided_lanes::<Exact>(
+            0x1234_5678_9abc_def1,
+            &[1.0, 1e3, 1e-3],
+            aim,
+            intersect_lanes,
+        );
     }
 
     /// The AVX pass answers exactly what the portable form answers (hits, undecided lanes and
@@ -159,6 +142,7 @@ mod tests {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     #[test]
     fn the_avx_pass_equals_the_portable_form() {
+        use crate::geometry::triangle::lane_check::{points, random_block, ray_origin};
         let mut point = points(0x0bad_cafe_f00d_d00d);
         let mut seen = LaneHits {
             hit: 0,
@@ -167,14 +151,8 @@ mod tests {
         };
         for round in 0..40_000 {
             let scale = [1.0, 1e3, 1e-3, 1e6][round % 4];
-            let tris: [Triangle; 4] =
-                std::array::from_fn(|_| Triangle::new(point(scale), point(scale), point(scale)));
-            let lanes = TriangleLanes::new(&tris[..1 + round % 4]);
-            let o = match round % 7 {
-                // In the plane of the first triangle: edge functions near zero.
-                0 => tris[0].v[0] * 2.0 - tris[0].v[1],
-                _ => point(scale * 8.0),
-            };
+            let (tris, lanes) = random_block(&mut point, scale, round);
+            let o = ray_origin(&mut point, &tris, scale, round);
             let target = match round % 3 {
                 0 => tris[0].v[round % 3],
                 _ => tris[0].v[0] * 0.25 + tris[0].v[1] * 0.25 + tris[0].v[2] * 0.5,

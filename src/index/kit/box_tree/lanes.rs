@@ -81,6 +81,190 @@ impl Lanes for Vec4 {
     }
 }
 
+/// `struct $name($reg)`, one x86 register of `$width` `f32` lanes, with `Sub`, `Mul` and
+/// [`Lanes`] from the intrinsics named (`$sub`, `$mul`, `$splat`, `$load`, `$store`, `$min`,
+/// `$max`; `nan_to`, `le` and `lt` as expressions over the raw registers). The AVX [`F8`] and the
+/// AVX-512 [`F16`](super::lanes16::F16) are this one code over their own instructions.
+///
+/// Used only inside a module whose `cfg` enables the instructions named: that is what makes
+/// every `unsafe` block it writes sound (the loads and stores go through arrays of
+/// [`MAX_LANES`] `f32`, at least `$width`).
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+macro_rules! x86_lanes {
+    (
+        $(#[$doc:meta])*
+        $name:ident($reg:ty), $width:literal lanes,
+        sub $sub:ident, mul $mul:ident, splat $splat:ident, load $load:ident, store $store:ident,
+        min $min:ident, max $max:ident,
+        nan_to |$v:ident, $fill:ident| $nan_to:expr,
+        le |$la:ident, $lb:ident| $le:expr,
+        lt |$ta:ident, $tb:ident| $lt:expr $(,)?
+    ) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy)]
+        pub struct $name($reg);
+
+        impl std::ops::Sub for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn sub(self, o: $name) -> $name {
+                $name(unsafe { $sub(self.0, o.0) })
+            }
+        }
+
+        impl std::ops::Mul for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn mul(self, o: $name) -> $name {
+                $name(unsafe { $mul(self.0, o.0) })
+            }
+        }
+
+        impl Lanes for $name {
+            const WIDTH: usize = $width;
+
+            #[inline(always)]
+            fn splat(x: f32) -> Self {
+                $name(unsafe { $splat(x) })
+            }
+
+            #[inline(always)]
+            fn load(x: &[f32; MAX_LANES]) -> Self {
+                $name(unsafe { $load(x.as_ptr()) })
+            }
+
+            #[inline(always)]
+            fn to_lanes(self) -> [f32; MAX_LANES] {
+                let mut out = [0.0; MAX_LANES];
+                unsafe { $store(out.as_mut_ptr(), self.0) };
+                out
+            }
+
+            #[inline(always)]
+            fn min(self, o: Self) -> Self {
+                $name(unsafe { $min(self.0, o.0) })
+            }
+
+            #[inline(always)]
+            fn max(self, o: Self) -> Self {
+                $name(unsafe { $max(self.0, o.0) })
+            }
+
+            #[inline(always)]
+            fn nan_to(self, $fill: f32) -> Self {
+                let $v = self.0;
+                $name(unsafe { $nan_to })
+            }
+
+            #[inline(always)]
+            fn le(self, o: Self) -> u32 {
+                let ($la, $lb) = (self.0, o.0);
+                unsafe { $le }
+            }
+
+            #[inline(always)]
+            fn lt(self, o: Self) -> u32 {
+                let ($ta, $tb) = (self.0, o.0);
+                unsafe { $lt }
+            }
+        }
+    };
+}
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+pub(super) use x86_lanes;
+
+/// [`Halves`]: two registers as one of twice the lanes (targets without AVX-512).
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx512f")))]
+mod halves {
+    use super::{Lanes, MAX_LANES};
+    use std::ops::{Mul, Sub};
+
+    /// Twice `H`'s lanes as two `H` registers, lanes `0..H::WIDTH` in the first:
+    /// [`F8`](super::F8) as two [`Vec4`](glam::Vec4) without AVX,
+    /// [`F16`](super::super::lanes16::F16) as two `F8` without AVX-512. Every operation is
+    /// `H`'s on each half, so every lane has the bits `H` gives it.
+    #[derive(Debug, Clone, Copy)]
+    pub struct Halves<H>(pub(super) [H; 2]);
+
+    impl<H: Lanes> Halves<H> {
+        #[inline(always)]
+        fn map2(self, o: Self, f: impl Fn(H, H) -> H) -> Self {
+            Halves([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
+        }
+
+        #[inline(always)]
+        fn mask2(self, o: Self, f: impl Fn(H, H) -> u32) -> u32 {
+            f(self.0[0], o.0[0]) | f(self.0[1], o.0[1]) << H::WIDTH
+        }
+    }
+
+    impl<H: Lanes> Sub for Halves<H> {
+        type Output = Self;
+        #[inline(always)]
+        fn sub(self, o: Self) -> Self {
+            self.map2(o, |a, b| a - b)
+        }
+    }
+
+    impl<H: Lanes> Mul for Halves<H> {
+        type Output = Self;
+        #[inline(always)]
+        fn mul(self, o: Self) -> Self {
+            self.map2(o, |a, b| a * b)
+        }
+    }
+
+    impl<H: Lanes> Lanes for Halves<H> {
+        const WIDTH: usize = 2 * H::WIDTH;
+
+        #[inline(always)]
+        fn splat(x: f32) -> Self {
+            Halves([H::splat(x); 2])
+        }
+
+        #[inline(always)]
+        fn load(x: &[f32; MAX_LANES]) -> Self {
+            let mut high = [0.0; MAX_LANES];
+            high[..H::WIDTH].copy_from_slice(&x[H::WIDTH..Self::WIDTH]);
+            Halves([H::load(x), H::load(&high)])
+        }
+
+        #[inline(always)]
+        fn to_lanes(self) -> [f32; MAX_LANES] {
+            let mut out = self.0[0].to_lanes();
+            out[H::WIDTH..Self::WIDTH].copy_from_slice(&self.0[1].to_lanes()[..H::WIDTH]);
+            out
+        }
+
+        #[inline(always)]
+        fn min(self, o: Self) -> Self {
+            self.map2(o, H::min)
+        }
+
+        #[inline(always)]
+        fn max(self, o: Self) -> Self {
+            self.map2(o, H::max)
+        }
+
+        #[inline(always)]
+        fn nan_to(self, fill: f32) -> Self {
+            Halves(self.0.map(|h| h.nan_to(fill)))
+        }
+
+        #[inline(always)]
+        fn le(self, o: Self) -> u32 {
+            self.mask2(o, H::le)
+        }
+
+        #[inline(always)]
+        fn lt(self, o: Self) -> u32 {
+            self.mask2(o, H::lt)
+        }
+    }
+}
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx512f")))]
+pub use halves::Halves;
+
 pub use eight::F8;
 
 /// Eight lanes in one AVX register.
@@ -89,11 +273,21 @@ mod eight {
     use super::{Lanes, MAX_LANES};
     use glam::Vec4;
     use std::arch::x86_64::*;
-    use std::ops::{Mul, Sub};
 
-    /// Eight `f32` lanes (AVX).
-    #[derive(Debug, Clone, Copy)]
-    pub struct F8(__m256);
+    // SAFETY (every `unsafe` the macro writes): AVX is enabled at compile time (this module's
+    // cfg).
+    super::x86_lanes! {
+        /// Eight `f32` lanes (AVX).
+        F8(__m256), 8 lanes,
+        sub _mm256_sub_ps, mul _mm256_mul_ps, splat _mm256_set1_ps, load _mm256_loadu_ps,
+        store _mm256_storeu_ps, min _mm256_min_ps, max _mm256_max_ps,
+        nan_to |v, fill| {
+            let ok = _mm256_cmp_ps::<_CMP_EQ_OQ>(v, v);
+            _mm256_blendv_ps(_mm256_set1_ps(fill), v, ok)
+        },
+        le |a, b| _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(a, b)) as u32,
+        lt |a, b| _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LT_OS>(a, b)) as u32,
+    }
 
     impl F8 {
         /// Lanes `0..4` from `v[0]`, `4..8` from `v[1]`.
@@ -112,91 +306,22 @@ mod eight {
             out
         }
     }
-
-    // SAFETY (every `unsafe` below): AVX is enabled at compile time (this module's cfg), and
-    // the loads and stores go through arrays of at least eight f32.
-    impl Sub for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn sub(self, o: F8) -> F8 {
-            F8(unsafe { _mm256_sub_ps(self.0, o.0) })
-        }
-    }
-
-    impl Mul for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn mul(self, o: F8) -> F8 {
-            F8(unsafe { _mm256_mul_ps(self.0, o.0) })
-        }
-    }
-
-    impl Lanes for F8 {
-        const WIDTH: usize = 8;
-
-        #[inline(always)]
-        fn splat(x: f32) -> Self {
-            F8(unsafe { _mm256_set1_ps(x) })
-        }
-
-        #[inline(always)]
-        fn load(x: &[f32; MAX_LANES]) -> Self {
-            F8(unsafe { _mm256_loadu_ps(x.as_ptr()) })
-        }
-
-        #[inline(always)]
-        fn to_lanes(self) -> [f32; MAX_LANES] {
-            let mut out = [0.0; MAX_LANES];
-            unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
-            out
-        }
-
-        #[inline(always)]
-        fn min(self, o: Self) -> Self {
-            F8(unsafe { _mm256_min_ps(self.0, o.0) })
-        }
-
-        #[inline(always)]
-        fn max(self, o: Self) -> Self {
-            F8(unsafe { _mm256_max_ps(self.0, o.0) })
-        }
-
-        #[inline(always)]
-        fn nan_to(self, fill: f32) -> Self {
-            unsafe {
-                let ok = _mm256_cmp_ps::<_CMP_EQ_OQ>(self.0, self.0);
-                F8(_mm256_blendv_ps(_mm256_set1_ps(fill), self.0, ok))
-            }
-        }
-
-        #[inline(always)]
-        fn le(self, o: Self) -> u32 {
-            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(self.0, o.0)) as u32 }
-        }
-
-        #[inline(always)]
-        fn lt(self, o: Self) -> u32 {
-            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LT_OS>(self.0, o.0)) as u32 }
-        }
-    }
 }
 
-/// Eight lanes as two [`Vec4`] (targets without AVX): each half is [`Vec4`]'s operation.
+/// Eight lanes as two [`Vec4`] (targets without AVX).
 #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
 mod eight {
-    use super::{Lanes, MAX_LANES};
+    use super::Halves;
     use glam::Vec4;
-    use std::ops::{Mul, Sub};
 
     /// Eight `f32` lanes (two four-lane halves).
-    #[derive(Debug, Clone, Copy)]
-    pub struct F8([Vec4; 2]);
+    pub type F8 = Halves<Vec4>;
 
     impl F8 {
         /// Lanes `0..4` from `v[0]`, `4..8` from `v[1]`.
         #[inline(always)]
         pub fn from_halves(v: &[Vec4; 2]) -> F8 {
-            F8(*v)
+            Halves(*v)
         }
 
         /// The eight lanes.
@@ -205,79 +330,6 @@ mod eight {
             let [a, b, c, d] = self.0[0].to_array();
             let [e, f, g, h] = self.0[1].to_array();
             [a, b, c, d, e, f, g, h]
-        }
-
-        #[inline(always)]
-        fn map2(self, o: F8, f: impl Fn(Vec4, Vec4) -> Vec4) -> F8 {
-            F8([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
-        }
-
-        #[inline(always)]
-        fn mask2(self, o: F8, f: impl Fn(Vec4, Vec4) -> u32) -> u32 {
-            f(self.0[0], o.0[0]) | f(self.0[1], o.0[1]) << 4
-        }
-    }
-
-    impl Sub for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn sub(self, o: F8) -> F8 {
-            self.map2(o, |a, b| a - b)
-        }
-    }
-
-    impl Mul for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn mul(self, o: F8) -> F8 {
-            self.map2(o, |a, b| a * b)
-        }
-    }
-
-    impl Lanes for F8 {
-        const WIDTH: usize = 8;
-
-        #[inline(always)]
-        fn splat(x: f32) -> Self {
-            F8([Vec4::splat(x); 2])
-        }
-
-        #[inline(always)]
-        fn load(x: &[f32; MAX_LANES]) -> Self {
-            F8([Vec4::from_slice(&x[..4]), Vec4::from_slice(&x[4..8])])
-        }
-
-        #[inline(always)]
-        fn to_lanes(self) -> [f32; MAX_LANES] {
-            let mut out = [0.0; MAX_LANES];
-            self.0[0].write_to_slice(&mut out[..4]);
-            self.0[1].write_to_slice(&mut out[4..8]);
-            out
-        }
-
-        #[inline(always)]
-        fn min(self, o: Self) -> Self {
-            self.map2(o, Vec4::min)
-        }
-
-        #[inline(always)]
-        fn max(self, o: Self) -> Self {
-            self.map2(o, Vec4::max)
-        }
-
-        #[inline(always)]
-        fn nan_to(self, fill: f32) -> Self {
-            F8(self.0.map(|h| Lanes::nan_to(h, fill)))
-        }
-
-        #[inline(always)]
-        fn le(self, o: Self) -> u32 {
-            self.mask2(o, Lanes::le)
-        }
-
-        #[inline(always)]
-        fn lt(self, o: Self) -> u32 {
-            self.mask2(o, Lanes::lt)
         }
     }
 }

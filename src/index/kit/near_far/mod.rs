@@ -21,6 +21,7 @@ mod tree;
 mod walk;
 
 pub use axis::{AxisRay, axis_step};
+pub(crate) use tree::leaf_and_mailbox;
 pub use tree::{BuildResult, Built, NearFarIndex, Partition, SahParams};
 pub use walk::{SplitNode, Step};
 

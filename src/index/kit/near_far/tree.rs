@@ -40,6 +40,25 @@ pub trait Partition: SplitNode {
     fn leaf(&self) -> Option<(u32, u32)>;
 }
 
+/// The [`Partition`] methods of a node type whose parameters have a `mailbox: bool` field and
+/// whose `kind()` is an enum `$kind` with a `Leaf { first, count }` variant: the flag, and
+/// that variant's range.
+macro_rules! leaf_and_mailbox {
+    ($kind:ident) => {
+        fn mailbox(params: &Self::Params) -> bool {
+            params.mailbox
+        }
+
+        fn leaf(&self) -> Option<(u32, u32)> {
+            match self.kind() {
+                $kind::Leaf { first, count } => Some((first, count)),
+                $kind::Interior { .. } => None,
+            }
+        }
+    };
+}
+pub(crate) use leaf_and_mailbox;
+
 /// What [`Partition::build`] returns.
 pub type BuildResult<N> = Result<Built<N>, BuildError>;
 
