@@ -31,10 +31,6 @@ pub trait HitQuery: Send + Sync + 'static {
     /// walk is over.
     fn hit(found: &mut Self::Found, t: f32, prim: u32) -> bool;
 
-    /// Whether what was found has ended the walk ([`HitQuery::hit`]'s `true`, kept: a hit for
-    /// [`AnyHit`], never for [`Closest`]).
-    fn over(found: &Self::Found) -> bool;
-
     /// The answer from what the walk found.
     fn answer(found: Self::Found) -> Self::Answer;
 
@@ -71,11 +67,6 @@ impl HitQuery for Closest {
     }
 
     #[inline(always)]
-    fn over(_: &ClosestHit) -> bool {
-        false
-    }
-
-    #[inline(always)]
     fn answer(found: ClosestHit) -> Option<Hit> {
         found.get()
     }
@@ -105,11 +96,6 @@ impl HitQuery for AnyHit {
     fn hit(found: &mut bool, _: f32, _: u32) -> bool {
         *found = true;
         true
-    }
-
-    #[inline(always)]
-    fn over(found: &bool) -> bool {
-        *found
     }
 
     #[inline(always)]

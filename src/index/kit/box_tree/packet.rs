@@ -1,15 +1,15 @@
 //! Packet traversal of the box trees (Wald, Slusallek, Benthin and Wagner 2001), one walk for
-//! the binary BVH and the wide ones (`bvh4`, `bvh8`) and for both queries ([`HitQuery`]:
-//! closest hits, any hit; a packet's per-ray state is [`PacketState`]): up to [`MAX_PACKET`]
-//! neighbouring rays walk the tree together, four in one SSE register per quantity, five to
-//! eight in one AVX register ([`F8`]), nine to sixteen in one AVX-512 register ([`F16`]). A node is fetched once per packet; an active mask
+//! the binary BVH and the wide ones (`bvh4`, `bvh8`) and for both queries ([`LaneQuery`]:
+//! closest hits, any hit): up to [`MAX_PACKET`] neighbouring rays walk the tree together, four
+//! in one SSE register per quantity, five to eight in one AVX register ([`F8`]), nine to
+//! sixteen in one AVX-512 register ([`F16`]). A node is fetched once per packet; an active mask
 //! (bit `k` for ray `k`) says which rays still need it. At an inner node each child's box is
 //! tested once for the whole packet ([`PacketTree::hit`], [`super::packet_slab`]: one SIMD pass
 //! per child, each lane exactly its ray's single-ray test, against that ray's `t_max`: its best
 //! `t` so far for closest hits); each hit child goes on with the mask of the active rays that
 //! hit it and their entries, the packet visits one first (closest hits: [`nearest_last`]) and
 //! pushes the others. At a leaf every active ray runs the single-ray leaf test
-//! ([`super::leaves::Leaves::query`]).
+//! ([`super::leaves::Leaves::closest`], [`super::leaves::Leaves::any`]).
 //!
 //! Each ray keeps its own closest hit; a popped child keeps only the rays whose entry into it
 //! is not beyond their best `t` so far (one SIMD compare). Per ray this is exactly the
@@ -21,7 +21,7 @@
 //!
 //! Hybrid switch ([`go_single`]): when fewer than half the lanes are active at a node, each of
 //! the active rays finishes the node's subtree alone with the single-ray loop from its state so far
-//! ([`PacketState::finish_alone`]), and the packet goes on with its stack.
+//! ([`LaneQuery::finish_alone`]), and the packet goes on with its stack.
 //!
 //! Counting: every active ray is charged a node visit per node and the node's box tests (as
 //! the single-ray step counts them) per inner node, so tests and steps per ray compare with
@@ -35,12 +35,12 @@
 use super::lanes::{F8, Lanes, MAX_LANES};
 use super::lanes16::F16;
 use super::node::Child;
-use super::packet_query::{PacketState, bits};
+use super::packet_query::{AnyLanes, ClosestLanes, LaneQuery, bits};
 use super::packet_slab::{PacketRays, hit_box, hit_box_by_sign};
 use super::tree::{BoxTree, Top};
-use crate::geometry::{Aabb, Ray};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::index::kit::stack::Stack;
-use crate::index::{HitQuery, MAX_PACKET, Stats};
+use crate::index::{MAX_PACKET, Stats};
 use crate::scene::Geometry;
 use glam::Vec4;
 
@@ -55,13 +55,7 @@ macro_rules! tree_packets {
             out: &mut [Option<$crate::geometry::Hit>],
             stats: &mut [S],
         ) {
-            $crate::index::kit::box_tree::packet::hits::<$crate::index::Closest, _, _, _, _, _>(
-                &self.tree(),
-                geom,
-                rays,
-                out,
-                stats,
-            )
+            $crate::index::kit::box_tree::packet::closest_hits(&self.tree(), geom, rays, out, stats)
         }
 
         fn any_hits_packet<G: $crate::scene::Geometry, S: $crate::index::Stats>(
@@ -71,13 +65,7 @@ macro_rules! tree_packets {
             out: &mut [bool],
             stats: &mut [S],
         ) {
-            $crate::index::kit::box_tree::packet::hits::<$crate::index::AnyHit, _, _, _, _, _>(
-                &self.tree(),
-                geom,
-                rays,
-                out,
-                stats,
-            )
+            $crate::index::kit::box_tree::packet::any_hits(&self.tree(), geom, rays, out, stats)
         }
     };
 }
@@ -248,18 +236,46 @@ fn go_single<V: Lanes>(active: u32) -> bool {
     2 * active.count_ones() < V::WIDTH as u32
 }
 
-/// The answers to query `Q` for a packet of at most [`MAX_PACKET`] rays (`out`, `stats` as long
-/// as `rays`): the walk in the narrowest register that holds the packet, four lanes, eight or
-/// sixteen.
+/// Closest hits of a packet of at most [`MAX_PACKET`] rays (`out`, `stats` as long as `rays`).
+pub(crate) fn closest_hits<const W: usize, const N: usize, T, G, S>(
+    tree: &T,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [Option<Hit>],
+    stats: &mut [S],
+) where
+    T: PacketTree<W, N>,
+    G: Geometry,
+    S: Stats,
+{
+    by_width::<ClosestLanes, W, N, T, G, S>(tree, geom, rays, out, stats);
+}
+
+/// Any-hit results of a packet of at most [`MAX_PACKET`] rays.
+pub(crate) fn any_hits<const W: usize, const N: usize, T, G, S>(
+    tree: &T,
+    geom: &G,
+    rays: &[Ray],
+    out: &mut [bool],
+    stats: &mut [S],
+) where
+    T: PacketTree<W, N>,
+    G: Geometry,
+    S: Stats,
+{
+    by_width::<AnyLanes, W, N, T, G, S>(tree, geom, rays, out, stats);
+}
+
+/// The walk in the narrowest register that holds the packet: four lanes, eight or sixteen.
 #[inline(always)]
-pub(crate) fn hits<Q, const W: usize, const N: usize, T, G, S>(
+fn by_width<Q, const W: usize, const N: usize, T, G, S>(
     tree: &T,
     geom: &G,
     rays: &[Ray],
     out: &mut [Q::Answer],
     stats: &mut [S],
 ) where
-    Q: HitQuery,
+    Q: LaneQuery,
     T: PacketTree<W, N>,
     G: Geometry,
     S: Stats,
@@ -281,7 +297,7 @@ fn walk<Q, const W: usize, const N: usize, T, G, S, V>(
     out: &mut [Q::Answer],
     stats: &mut [S],
 ) where
-    Q: HitQuery,
+    Q: LaneQuery,
     T: PacketTree<W, N>,
     G: Geometry,
     S: Stats,
@@ -289,7 +305,7 @@ fn walk<Q, const W: usize, const N: usize, T, G, S, V>(
 {
     let top = tree.top();
     let (packet, mut active) = start::<V, S>(&top, rays, stats);
-    let mut q = PacketState::<Q>::new(rays);
+    let mut q = Q::new(rays);
     let mut stack = Stack::<(Child, u32, V), N>::new();
     let mut at = top.root;
     loop {
@@ -307,7 +323,7 @@ fn walk<Q, const W: usize, const N: usize, T, G, S, V>(
             } else {
                 let t_max = V::load(q.t_max());
                 let (masks, entries) = test_children(tree, at.index, active, &packet, t_max, stats);
-                let (order, n) = match Q::CLOSEST {
+                let (order, n) = match Q::ORDERED {
                     true => nearest_last(&masks, &entries),
                     false => as_found(&masks),
                 };
