@@ -12,6 +12,12 @@
 
 #include <immintrin.h>
 
+// BVH8_CPU traverses with AVX2 and FMA (without them tinybvh's Intersect exits the process);
+// `make_ray` uses them too. build.rs compiles for the building machine (-march=native).
+#if !defined(__AVX2__) || !defined(__FMA__)
+#error "the tinybvh-bvh8 peer needs a CPU with AVX2 and FMA; on other CPUs use --features embree instead of peers or tinybvh"
+#endif
+
 #include <atomic>
 #include <cmath>
 #include <cstddef>
