@@ -2,36 +2,26 @@
 //! `traverse!` loop with its SIMD node test, with our kernel and our closest-hit order in the
 //! primitive step.
 
-use super::tree::{Obvhs, ObvhsTree};
+use super::tree::{Obvhs, ObvhsTree, TreeShape};
 use super::{culling_bound, obvhs_ray};
 use crate::geometry::Ray;
-use crate::index::{IndexInfo, Stats};
+use crate::index::Stats;
 use glam::UVec2;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::{CwBvh, builder::build_cwbvh, node::CwBvhNode};
 use std::time::Duration;
 
-/// obvhs's compressed wide BVH8 as an index (`obvhs-cwbvh`).
-pub type ObvhsCwBvh = Obvhs<CwBvhPeer>;
+/// obvhs's compressed wide BVH8 over the scene's primitive bounds as an index (`obvhs-cwbvh`).
+pub type ObvhsCwBvh = Obvhs<CwBvh>;
 
-/// obvhs's `CwBvh` over the scene's primitive bounds.
-#[derive(Clone)]
-pub struct CwBvhPeer {
-    bvh: CwBvh,
-    depth: usize,
-    leaves: usize,
-}
-
-impl ObvhsTree for CwBvhPeer {
+impl ObvhsTree for CwBvh {
     const NAME: &'static str = "obvhs-cwbvh";
     /// About 360 B measured (its binary tree, then the compressed wide one).
     const BUILD_BYTES_PER_PRIM: usize = 400;
 
     fn build(boxes: &[Aabb], params: BvhBuildParams, time: &mut Duration) -> Self {
-        let bvh = build_cwbvh(boxes, params, time);
-        let (depth, leaves) = shape(&bvh);
-        CwBvhPeer { bvh, depth, leaves }
+        build_cwbvh(boxes, params, time)
     }
 
     /// obvhs's `traverse!` loop with its SIMD node test. `prim` returning `false` leaves the
@@ -44,11 +34,11 @@ impl ObvhsTree for CwBvhPeer {
         mut prim: impl FnMut(u32, &mut S, &mut obvhs::ray::Ray) -> bool,
     ) {
         let mut oray = obvhs_ray(ray, culling_bound(ray.t_max));
-        let mut state = self.bvh.new_traversal(oray.direction);
+        let mut state = self.new_traversal(oray.direction);
         let mut node: &CwBvhNode;
-        let ids = &self.bvh.primitive_indices;
+        let ids = &self.primitive_indices;
         obvhs::traverse!(
-            self.bvh,
+            self,
             node,
             state,
             {
@@ -64,26 +54,24 @@ impl ObvhsTree for CwBvhPeer {
         );
     }
 
-    fn info(&self) -> IndexInfo {
-        let nodes = self.bvh.nodes.len();
-        let prims = self.bvh.primitive_indices.len();
-        let exact = self.bvh.exact_node_aabbs.as_ref().map_or(0, |v| v.len());
-        let memory_bytes =
-            nodes * size_of::<CwBvhNode>() + prims * 4 + exact * size_of::<obvhs::aabb::Aabb>();
-        IndexInfo {
-            nodes,
-            leaves: self.leaves,
-            depth: self.depth,
-            memory_bytes,
+    fn shape(&self) -> TreeShape {
+        let (depth, leaves) = depth_and_leaves(self);
+        let prims = self.primitive_indices.len();
+        let exact = self.exact_node_aabbs.as_ref().map_or(0, |v| v.len());
+        TreeShape {
+            nodes: self.nodes.len(),
+            leaves,
+            depth,
             prim_refs: prims,
-            extra: vec![("bytes_per_prim".into(), memory_bytes as f64 / prims as f64)],
-            ..IndexInfo::default()
+            memory_bytes: self.nodes.len() * size_of::<CwBvhNode>()
+                + prims * 4
+                + exact * size_of::<obvhs::aabb::Aabb>(),
         }
     }
 }
 
 /// Levels (root = 1, leaves counted as a level below their node) and leaf children.
-fn shape(bvh: &CwBvh) -> (usize, usize) {
+fn depth_and_leaves(bvh: &CwBvh) -> (usize, usize) {
     if bvh.nodes.is_empty() {
         return (0, 0);
     }

@@ -11,8 +11,8 @@ use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use std::time::Duration;
 
-/// One of obvhs's trees, as [`Obvhs`] needs it.
-pub trait ObvhsTree: Sized + Send + Sync + 'static {
+/// One of obvhs's trees (implemented on obvhs's own types), as [`Obvhs`] needs it.
+pub trait ObvhsTree: Clone + Send + Sync + 'static {
     /// The registry name, for errors.
     const NAME: &'static str;
     /// The build's peak heap per primitive for the estimate
@@ -29,13 +29,30 @@ pub trait ObvhsTree: Sized + Send + Sync + 'static {
         stats: &mut S,
         prim: impl FnMut(u32, &mut S, &mut obvhs::ray::Ray) -> bool,
     );
-    /// Size and shape.
-    fn info(&self) -> IndexInfo;
+    /// The tree's size and shape, measured once after the build.
+    fn shape(&self) -> TreeShape;
 }
 
-/// An obvhs tree as our index: a peer with obvhs's box tests and our triangle test.
+/// What [`Obvhs::info`] reports of a tree: obvhs keeps no such figures itself.
+#[derive(Debug, Clone, Copy)]
+pub struct TreeShape {
+    pub nodes: usize,
+    pub leaves: usize,
+    /// Levels of the deepest leaf (root = 1).
+    pub depth: usize,
+    /// Entries of the tree's primitive-id array (one per primitive: obvhs does not split).
+    pub prim_refs: usize,
+    /// The tree's arrays: nodes, primitive ids and any extra boxes it keeps.
+    pub memory_bytes: usize,
+}
+
+/// An obvhs tree as our index: a peer with obvhs's box tests and our triangle test, with its
+/// shape measured at the build.
 #[derive(Clone)]
-pub struct Obvhs<T>(T);
+pub struct Obvhs<T> {
+    tree: T,
+    shape: TreeShape,
+}
 
 impl<T: ObvhsTree> Index for Obvhs<T> {
     type Params = ObvhsParams;
@@ -43,7 +60,9 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
     fn build<G: Geometry>(geom: &G, params: &ObvhsParams) -> Result<Self, BuildError> {
         let boxes = prim_boxes(geom, T::NAME)?;
         let params = params.preset.build_params();
-        Ok(Obvhs(T::build(&boxes, params, &mut Duration::default())))
+        let tree = T::build(&boxes, params, &mut Duration::default());
+        let shape = tree.shape();
+        Ok(Obvhs { tree, shape })
     }
 
     /// obvhs's walk, each primitive through our kernel; for the closest hit obvhs's `tmax`
@@ -52,7 +71,7 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
     #[inline]
     fn query<Q: HitQuery, G: Geometry, S: Stats>(&self, g: &G, r: &Ray, s: &mut S) -> Q::Answer {
         let mut found = Q::start(r);
-        self.0.walk(r, s, |prim, s, oray| {
+        self.tree.walk(r, s, |prim, s, oray| {
             let over = prim_test::test::<Q, G, S>(&mut found, g, prim, r, s);
             if Q::CLOSEST {
                 oray.tmax = culling_bound(Q::reach(&found, r));
@@ -67,7 +86,25 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
     }
 
     fn info(&self) -> IndexInfo {
-        self.0.info()
+        let TreeShape {
+            nodes,
+            leaves,
+            depth,
+            prim_refs,
+            memory_bytes,
+        } = self.shape;
+        IndexInfo {
+            nodes,
+            leaves,
+            depth,
+            memory_bytes,
+            prim_refs,
+            extra: vec![(
+                "bytes_per_prim".into(),
+                memory_bytes as f64 / prim_refs as f64,
+            )],
+            ..IndexInfo::default()
+        }
     }
 }
 
