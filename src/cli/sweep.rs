@@ -6,7 +6,7 @@
 use super::threads::{parse_threads, with_threads};
 use crate::geometry::{Ray, TriangleKernelKind};
 use crate::harness::sweep::{
-    SweepPlan, SweepRow, SweepSetup, bvh_plan, grid_plan, grid2_plan, octree_plan, run_sweep,
+    SweepPlan, SweepRow, SweepSetup, bvh_plan, grid_plan, grid2_sweep, octree_sweep, run_sweep,
 };
 use crate::index::bvh::params::SPLIT_BUDGET;
 use crate::index::grid::resolution;
@@ -192,15 +192,15 @@ fn run_grid(a: GridSweepArgs) -> anyhow::Result<()> {
 
 fn run_grid2(a: Grid2SweepArgs) -> anyhow::Result<()> {
     let p = prepare(&a.common, "grid2")?;
-    let plan = grid2_plan(&p.scene, a.common.rays.name(), &a.top_lambda, &a.lambda)?;
+    let plan = grid2_sweep(&a.top_lambda, &a.lambda).plan(&p.scene, a.common.rays.name())?;
     sweep_and_write(&p, &a.common, &plan)
 }
 
 fn run_octree(a: OctreeSweepArgs) -> anyhow::Result<()> {
     let name = a.traversal.as_str();
     let p = prepare(&a.common, name)?;
-    let rays = a.common.rays.name();
-    let plan = octree_plan(&p.scene, rays, name, &a.max_prims, &a.max_depth)?;
+    let plan =
+        octree_sweep(name, &a.max_prims, &a.max_depth).plan(&p.scene, a.common.rays.name())?;
     sweep_and_write(&p, &a.common, &plan)
 }
 

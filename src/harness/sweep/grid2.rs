@@ -1,35 +1,17 @@
 //! The two-level grid's sweep: one line per top-grid density, against the inner density.
 
-use super::plan::crossed;
-use super::{SweepPlan, SweepPlot};
-use crate::index::{BuildError, Grid2Params, IndexSpec};
-use crate::scene::Scene;
+use super::plan::{Crossed, Swept};
+use crate::index::Grid2Params;
 
-/// The two-level grid's plan on `scene` for a ray set named `rays`: a point per pair of
-/// `top_lambda` and inner `lambda`.
-pub fn grid2_plan(
-    scene: &Scene,
-    rays: &str,
-    top_lambda: &[f32],
-    lambda: &[f32],
-) -> Result<SweepPlan, BuildError> {
+/// The two-level grid's sweep: a point per pair of `top_lambda` and inner `lambda`
+/// ([`Crossed::plan`] makes the plan on a scene).
+pub fn grid2_sweep<'a>(top_lambda: &'a [f32], lambda: &'a [f32]) -> Crossed<'a, f32, f32> {
     let d = Grid2Params::default();
-    let points = crossed("top_lambda", top_lambda, lambda, |top, l| {
-        format!("grid2:top_lambda={top},lambda={l}")
-    })?;
-    let marker = format!("default (top_lambda={}, lambda={})", d.top_lambda, d.lambda);
-    let plot = SweepPlot::log_x(
-        format!("grid2 on {}, {rays} rays", scene.name),
-        "inner cells per primitive (lambda)",
-        (d.lambda as f64, marker),
-    );
-    let default: IndexSpec =
-        format!("grid2:top_lambda={},lambda={}", d.top_lambda, d.lambda).parse()?;
-    Ok(SweepPlan {
-        index: "grid2".into(),
+    Crossed {
+        index: "grid2",
         size_label: "cells",
-        points,
-        plot,
-        default: default.to_string(),
-    })
+        series: Swept::new("top_lambda", top_lambda, d.top_lambda),
+        x: Swept::new("lambda", lambda, d.lambda),
+        x_label: "inner cells per primitive (lambda)",
+    }
 }

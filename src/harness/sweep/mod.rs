@@ -3,8 +3,9 @@
 //! Generic over the index: a point is an x value and an [`IndexSpec`] (`grid:res=[64,64,64]`,
 //! `octree:max_depth=12`), grouped into named series (one line per series in the charts).
 //! Each index's plan (its points, the charts' axes and marker, its default) is a file here
-//! ([`grid_plan`], [`grid2_plan`], [`octree_plan`], [`bvh_plan`]); `accelbench sweep` only
-//! reads the arguments and calls one.
+//! ([`grid_plan`], [`bvh_plan`]; [`grid2_sweep`] and [`octree_sweep`] describe a [`Crossed`]
+//! sweep of two parameters, whose `plan` is shared); `accelbench sweep` only reads the
+//! arguments and calls one.
 
 mod bvh;
 mod grid;
@@ -14,9 +15,9 @@ mod plan;
 
 pub use bvh::bvh_plan;
 pub use grid::grid_plan;
-pub use grid2::grid2_plan;
-pub use octree::octree_plan;
-pub use plan::{SweepPlan, SweepPlot};
+pub use grid2::grid2_sweep;
+pub use octree::octree_sweep;
+pub use plan::{Crossed, SweepPlan, SweepPlot, Swept};
 
 use super::timing::{Query, counting_pass, timed_pass};
 use super::verify::{Mismatch, compare_closest};

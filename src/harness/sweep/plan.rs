@@ -2,7 +2,8 @@
 //! ([`SweepPlot`]), what its size column counts, and the default it is compared with.
 
 use super::SweepPoint;
-use crate::index::BuildError;
+use crate::index::{BuildError, IndexSpec};
+use crate::scene::Scene;
 use std::fmt::Display;
 
 /// Titles, axis and marker of a sweep's charts.
@@ -42,23 +43,66 @@ impl SweepPlot {
     }
 }
 
-/// The points of a sweep over two parameters: a series per value `o` of `outer` (named
-/// `{outer_name}={o}`), in it a point per value `i` of `inner` at `x = i`, of spec `spec(o, i)`.
-pub(super) fn crossed<O: Copy + Display, I: Copy + Into<f64>>(
-    outer_name: &str,
-    outer: &[O],
-    inner: &[I],
-    spec: impl Fn(O, I) -> String,
-) -> Result<Vec<SweepPoint>, BuildError> {
-    let mut points = Vec::new();
-    for &o in outer {
-        for &i in inner {
-            points.push(SweepPoint {
-                series: format!("{outer_name}={o}"),
-                x: i.into(),
-                spec: spec(o, i).parse()?,
-            });
+/// One swept parameter of an index: its key in specs, the values to sweep and its default.
+pub struct Swept<'a, T> {
+    key: &'static str,
+    values: &'a [T],
+    default: T,
+}
+
+impl<'a, T> Swept<'a, T> {
+    pub fn new(key: &'static str, values: &'a [T], default: T) -> Self {
+        Swept {
+            key,
+            values,
+            default,
         }
     }
-    Ok(points)
+}
+
+/// A sweep of two parameters of `index`, crossed: a series per value of `series` (named
+/// `{key}={value}`), along it a point per value of `x` at that x (a logarithmic axis labelled
+/// `x_label`). The default parameters are the chart's marker and the comparison.
+pub struct Crossed<'a, S, X> {
+    pub index: &'a str,
+    /// What the structure's size counts ([`SweepPlan::size_label`]).
+    pub size_label: &'static str,
+    pub series: Swept<'a, S>,
+    pub x: Swept<'a, X>,
+    pub x_label: &'static str,
+}
+
+impl<S: Copy + Display, X: Copy + Display + Into<f64>> Crossed<'_, S, X> {
+    /// The plan on `scene` for a ray set named `rays`.
+    pub fn plan(&self, scene: &Scene, rays: &str) -> Result<SweepPlan, BuildError> {
+        let (series, x) = (&self.series, &self.x);
+        let spec = |s: S, v: X| format!("{}:{}={s},{}={v}", self.index, series.key, x.key);
+        let mut points = Vec::new();
+        for &s in series.values {
+            for &v in x.values {
+                points.push(SweepPoint {
+                    series: format!("{}={s}", series.key),
+                    x: v.into(),
+                    spec: spec(s, v).parse()?,
+                });
+            }
+        }
+        let marker = format!(
+            "default ({}={}, {}={})",
+            series.key, series.default, x.key, x.default
+        );
+        let plot = SweepPlot::log_x(
+            format!("{} on {}, {rays} rays", self.index, scene.name),
+            self.x_label,
+            (x.default.into(), marker),
+        );
+        let default: IndexSpec = spec(series.default, x.default).parse()?;
+        Ok(SweepPlan {
+            index: self.index.into(),
+            size_label: self.size_label,
+            points,
+            plot,
+            default: default.to_string(),
+        })
+    }
 }
