@@ -4,6 +4,7 @@
 use crate::common::cli::{accelbench_fails, accelbench_ok};
 #[cfg(unix)]
 use crate::common::cli::{interrupt_at, spawn_piped};
+use crate::common::temp::temp_path;
 use crate::common::{agreement_rays, assert_no_mismatch};
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::harness::verify::compare_indices;
@@ -116,8 +117,7 @@ fn indices_without_a_refit_and_changed_scenes_are_refused() {
 
 #[test]
 fn animate_writes_a_verified_report_per_frame() {
-    let out = tempfile::tempdir().unwrap();
-    let dir = out.path().join("anim");
+    let (_out, dir) = temp_path("anim");
     let args = [
         "animate",
         "--scene",
@@ -207,8 +207,7 @@ fn animate_refuses_bad_motions_sets_and_frame_counts() {
 #[cfg(unix)]
 #[test]
 fn an_interrupted_animation_keeps_its_finished_frames() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("a");
+    let (_tmp, out) = temp_path("a");
     let child = spawn_piped(&[
         "animate",
         "--scene",

@@ -4,6 +4,7 @@
 //! zeros (no disk used), which the old whole-file reads took seconds and gigabytes over.
 
 use crate::common::cli::{accelbench, accelbench_fails};
+use crate::common::temp::temp_path;
 use std::time::{Duration, Instant};
 
 /// A sparse file of `len` zero bytes at `path`, starting with `head`.
@@ -40,8 +41,7 @@ fn good_record() -> Vec<u8> {
 
 #[test]
 fn a_bad_first_ray_record_is_reported_before_the_file_is_read() {
-    let tmp = tempfile::tempdir().unwrap();
-    let f = tmp.path().join("zeros.rays");
+    let (_tmp, f) = temp_path("zeros.rays");
     sparse(&f, &[], 2 * GIB);
     fails_quickly(
         &[
@@ -58,8 +58,7 @@ fn a_bad_first_ray_record_is_reported_before_the_file_is_read() {
 
 #[test]
 fn a_limit_reads_only_the_records_it_traces() {
-    let tmp = tempfile::tempdir().unwrap();
-    let f = tmp.path().join("ten.rays");
+    let (_tmp, f) = temp_path("ten.rays");
     // Ten good records, then zeros (invalid rays) up to 2 GiB.
     sparse(&f, &good_record().repeat(10), 2 * GIB);
     let start = Instant::now();
@@ -95,8 +94,7 @@ fn a_limit_reads_only_the_records_it_traces() {
 
 #[test]
 fn a_binary_file_given_as_obj_is_refused_by_its_first_bytes() {
-    let tmp = tempfile::tempdir().unwrap();
-    let f = tmp.path().join("zeros.obj");
+    let (_tmp, f) = temp_path("zeros.obj");
     sparse(&f, b"v 0 0 0\n", 2 * GIB);
     fails_quickly(
         &["info", "--scene", f.to_str().unwrap()],

@@ -2,10 +2,11 @@
 //! fix) and on the happy path (`rays`, then `trace` writes one hit record per ray; `gen` writes
 //! an OBJ that loads back).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use crate::common;
+use crate::common::temp::temp_path;
 use common::cli::{accelbench, accelbench_fails as fails_with, accelbench_ok};
 
 fn file(dir: &Path, name: &str, bytes: &[u8]) -> String {
@@ -186,8 +187,7 @@ fn rays_then_trace_writes_one_hit_per_ray() {
 
 #[test]
 fn gen_writes_an_obj_that_loads_back_and_example_scenes_load() {
-    let dir = tempfile::tempdir().unwrap();
-    let obj: PathBuf = dir.path().join("meshes/terrain.obj");
+    let (_dir, obj) = temp_path("meshes/terrain.obj");
     accelbench_ok(&[
         "gen",
         "--generator",

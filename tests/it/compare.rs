@@ -6,6 +6,7 @@ use accelbench::harness::suite::ResultRow;
 use std::path::Path;
 
 use crate::common;
+use crate::common::temp::temp_path;
 use common::cli::{Suite, accelbench, accelbench_fails};
 
 fn read_rows(dir: &Path) -> Vec<ResultRow> {
@@ -27,8 +28,7 @@ fn write_rows(dir: &Path, rows: &[ResultRow]) {
 
 #[test]
 fn a_row_twice_as_slow_fails_the_gate_and_is_named() {
-    let dir = tempfile::tempdir().unwrap();
-    let a = dir.path().join("a");
+    let (dir, a) = temp_path("a");
     Suite::run("icosphere:n=400", "bvh,grid", "primary,incoherent", &a)
         .without("--repeats")
         .ok();

@@ -4,6 +4,7 @@
 
 use crate::common;
 
+use crate::common::temp::temp_path;
 use accelbench::geometry::{Ray, Triangle};
 use accelbench::index::{Counters, Grid, GridParams, Index, IndexSpec, build_index_on};
 use accelbench::scene::{Geometry, Scene, Triangles, generators};
@@ -199,8 +200,7 @@ fn bad_parameters_are_typed_errors() {
 
 #[test]
 fn cli_sweep_writes_csv_and_charts_and_trace_takes_grid() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("sweep");
+    let (dir, out) = temp_path("sweep");
     let o = out.to_str().unwrap();
     let run = accelbench(&[
         "sweep",

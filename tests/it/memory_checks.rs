@@ -5,11 +5,11 @@
 //! deterministic.
 
 use crate::common::cli::{Suite, accelbench_fails, accelbench_ok};
+use crate::common::temp::temp_path;
 
 #[test]
 fn a_primary_set_over_the_budget_is_refused_before_the_run() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("r");
+    let (_tmp, out) = temp_path("r");
     Suite::run("soup:n=100", "bvh", "primary", &out)
         .without("--quiet")
         .without("--picture-size")
@@ -34,8 +34,7 @@ fn verify_names_the_incoherent_count() {
 
 #[test]
 fn a_ray_file_over_the_budget_is_refused_and_one_within_is_written() {
-    let tmp = tempfile::tempdir().unwrap();
-    let f = tmp.path().join("a.rays");
+    let (_tmp, f) = temp_path("a.rays");
     let path = f.to_str().unwrap();
     let rays = |set: &'static str, amount: &'static str, count: &'static str, budget| {
         let head = ["rays", "--scene", "soup:n=100", "--out", path, "--set", set];
@@ -159,8 +158,7 @@ fn a_build_that_outgrows_its_estimate_stops_at_the_budget() {
         assert!(line.starts_with(&stopped), "{out}");
         assert!(line.contains("raise leaf_size or lower max_depth"), "{out}");
     }
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("r");
+    let (_tmp, dir) = temp_path("r");
     Suite::run("slivers:n=50000", "bvh,kdtree", "primary", &dir)
         .with("--memory-budget", "48M")
         .ok();

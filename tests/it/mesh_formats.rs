@@ -2,6 +2,7 @@
 //! triangle for triangle, the same scene written as OBJ (and has the same reference bounds);
 //! malformed files of each format are refused with a location (line, byte or JSON path).
 
+use crate::common::temp::temp_path;
 use accelbench::geometry::Triangle;
 use accelbench::scene::{Scene, load_scene};
 use std::path::{Path, PathBuf};
@@ -421,8 +422,7 @@ fn meshes_named_by_a_scene_file_may_be_ply_or_gltf() {
 #[test]
 fn gen_writes_binary_ply_that_info_reads() {
     use crate::common::cli::{accelbench_fails, accelbench_ok};
-    let dir = tempfile::tempdir().unwrap();
-    let ply = dir.path().join("t.ply");
+    let (dir, ply) = temp_path("t.ply");
     let obj = dir.path().join("t.obj");
     for out in [&ply, &obj] {
         let args = [

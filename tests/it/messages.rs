@@ -2,13 +2,13 @@
 //! ignores anyway (names, comments) is not a reason to refuse a file (issue 47, case 9).
 
 use crate::common::cli::{Suite, accelbench, accelbench_fails, the_line_with};
+use crate::common::temp::temp_path;
 
 const TRIANGLE: &[u8] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
 /// Writes `bytes` as an .obj file and runs `info` on it.
 fn info_of(bytes: &[u8], check: impl FnOnce(&str, std::process::Output)) {
-    let dir = tempfile::tempdir().unwrap();
-    let obj = dir.path().join("m.obj");
+    let (_dir, obj) = temp_path("m.obj");
     std::fs::write(&obj, bytes).unwrap();
     let path = obj.to_str().unwrap();
     check(path, accelbench(&["info", "--scene", path]));
@@ -153,8 +153,7 @@ fn an_input_folder_and_a_missing_output_folder_are_told_apart() {
 /// With `--quiet` the skip of a ray set still reaches the user, on stderr (issue 47, case 7).
 #[test]
 fn run_quiet_still_says_why_a_set_was_skipped() {
-    let dir = tempfile::tempdir().unwrap();
-    let obj = dir.path().join("huge.obj");
+    let (dir, obj) = temp_path("huge.obj");
     std::fs::write(
         &obj,
         b"v 1e30 1e30 1e30\nv 2e30 1e30 1e30\nv 1e30 2e30 1e30\nf 1 2 3\n",

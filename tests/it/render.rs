@@ -3,6 +3,7 @@
 //! shadows (point lights hard ones), and bad parameters are clear CLI errors.
 
 use crate::common;
+use crate::common::temp::temp_path;
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::index::{
     BuildError, Counters, IndexSpec, TraceIndex, build_index, index_names, is_peer,
@@ -239,8 +240,7 @@ fn read_png(path: &Path) -> Image {
 
 #[test]
 fn cli_writes_pngs_and_rejects_bad_parameters() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("a.png");
+    let (dir, out) = temp_path("a.png");
     let o = out.to_str().unwrap();
     let render = [
         "render",

@@ -6,6 +6,7 @@
 use crate::common::cli::{Suite, accelbench_fails};
 #[cfg(unix)]
 use crate::common::cli::{interrupt_at, spawn_piped};
+use crate::common::temp::temp_path;
 use std::path::Path;
 
 /// A quick one-index run into `out`.
@@ -31,8 +32,7 @@ fn names_in(dir: &Path) -> Vec<String> {
 
 #[test]
 fn a_rerun_replaces_the_older_report_whole_and_says_complete() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("r");
+    let (tmp, out) = temp_path("r");
     quick_run(&out).ok();
     assert_eq!(status_of(&out), "complete");
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
@@ -56,8 +56,7 @@ fn a_rerun_replaces_the_older_report_whole_and_says_complete() {
 
 #[test]
 fn a_second_run_on_a_held_folder_is_refused() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("r");
+    let (tmp, out) = temp_path("r");
     let lock = tmp.path().join(".r.accelbench-lock");
     // Held by a live process: this test's.
     std::fs::write(&lock, format!("{}\n", std::process::id())).unwrap();
@@ -76,8 +75,7 @@ fn a_second_run_on_a_held_folder_is_refused() {
 
 #[test]
 fn a_folder_of_other_files_is_never_replaced() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("mine");
+    let (_tmp, out) = temp_path("mine");
     std::fs::create_dir(&out).unwrap();
     std::fs::write(out.join("thesis.tex"), "precious").unwrap();
     quick_run(&out).fails(&["no accelbench report"]);
@@ -89,8 +87,7 @@ fn a_folder_of_other_files_is_never_replaced() {
 #[cfg(unix)]
 #[test]
 fn an_interrupted_run_keeps_what_it_measured_and_says_so() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("r");
+    let (tmp, out) = temp_path("r");
     let run = Suite::run(
         "icosphere:n=100,soup:n=300000,terrain:n=200",
         "bvh",
@@ -157,8 +154,7 @@ fn interrupted(
 #[test]
 fn an_interrupt_inside_a_ray_set_stops_at_the_next_pass() {
     use std::time::Duration;
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("r");
+    let (_tmp, out) = temp_path("r");
     let args = Suite::run("soup:n=100000", "bvh", "primary", &out).with("--repeats", "1000");
     // The build, brute force's reference and the counting pass take well under 4 s; the
     // 2,000 timed passes, about 20 ms each, take most of a minute.
@@ -180,8 +176,7 @@ fn an_interrupt_inside_a_ray_set_stops_at_the_next_pass() {
 #[test]
 fn an_interrupt_inside_a_long_counting_pass_stops_it() {
     use std::time::Duration;
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("r");
+    let (_tmp, out) = temp_path("r");
     let args =
         Suite::run("slivers:n=20000", "grid", "incoherent", &out).with("--incoherent", "1000000");
     let (code, err) = interrupted(args, Duration::from_secs(6), Duration::from_secs(8));

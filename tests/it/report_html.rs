@@ -10,6 +10,7 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::common;
+use crate::common::temp::temp_path;
 
 fn quick_run(out: &Path) {
     let stdout = common::cli::accelbench_ok(&[
@@ -43,8 +44,7 @@ fn sel(s: &str) -> Selector {
 
 #[test]
 fn verdict_matrix_matches_results_csv() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("report");
+    let (_dir, out) = temp_path("report");
     quick_run(&out);
     let rows: Vec<ResultRow> = csv::Reader::from_path(out.join("results.csv"))
         .unwrap()

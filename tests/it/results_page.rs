@@ -3,11 +3,11 @@
 //! a report is refused with the missing file named.
 
 use crate::common::cli::{Suite, accelbench, accelbench_fails, accelbench_ok};
+use crate::common::temp::temp_path;
 
 #[test]
 fn a_report_folder_becomes_a_dated_results_page() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("run");
+    let (dir, out) = temp_path("run");
     Suite::run("icosphere:n=300", "bvh,grid", "primary", &out)
         .with("--picture-size", "16")
         .ok();

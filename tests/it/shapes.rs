@@ -4,6 +4,7 @@
 
 use crate::common;
 
+use crate::common::temp::temp_path;
 use accelbench::geometry::{Ray, Shape};
 use accelbench::index::{index_names, is_peer};
 use accelbench::scene::{Scene, generators};
@@ -245,8 +246,7 @@ fn shapes_scene_renders_identically_through_every_index() {
         )
         .unwrap();
         let img = render_shaded(&scene, index.as_ref(), &opts).unwrap();
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("s.png");
+        let (_dir, p) = temp_path("s.png");
         img.write_png(&p).unwrap();
         let bytes = std::fs::read(&p).unwrap();
         match &first {

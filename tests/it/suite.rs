@@ -3,6 +3,7 @@
 
 use crate::common;
 
+use crate::common::temp::temp_path;
 use accelbench::camera::Camera;
 use accelbench::geometry::triangle::Watertight;
 use accelbench::geometry::{Ray, Triangle, TriangleKernelKind};
@@ -142,8 +143,7 @@ const COLUMNS: &[&str] = &[
 
 #[test]
 fn quick_run_end_to_end_writes_the_report() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("report");
+    let (_dir, out) = temp_path("report");
     common::cli::accelbench_ok(&[
         "run",
         "--quick",

@@ -3,14 +3,14 @@
 //! that compared nothing, duplicate parameters and indices, more threads than cores.
 
 use crate::common::cli::{Suite, accelbench, accelbench_fails, accelbench_ok, write_rays};
+use crate::common::temp::temp_path;
 
 /// The scene the ray-file cases trace.
 const SCENE: &str = "icosphere:n=200";
 
 /// A temporary folder (removed when dropped) and in it 8 x 8 primary rays of [`SCENE`].
 fn primary_rays() -> (tempfile::TempDir, std::path::PathBuf) {
-    let dir = tempfile::tempdir().unwrap();
-    let rays = dir.path().join("r.rays");
+    let (dir, rays) = temp_path("r.rays");
     write_rays(&rays, SCENE, "primary", &["--size", "8"]);
     (dir, rays)
 }
@@ -27,8 +27,7 @@ fn trace_refuses_to_write_its_hits_over_its_rays() {
 
 #[test]
 fn unknown_obj_statements_are_warned_about_once_each_with_their_line() {
-    let dir = tempfile::tempdir().unwrap();
-    let obj = dir.path().join("typo.obj");
+    let (_dir, obj) = temp_path("typo.obj");
     let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nF 2 4 3\nfo 2 4 3\nF 2 4 3\n";
     std::fs::write(&obj, text).unwrap();
     let out = accelbench(&["info", "--scene", obj.to_str().unwrap()]);

@@ -1,5 +1,6 @@
 //! Running the `accelbench` binary from tests, and the shared meshes they read.
 
+use super::temp::temp_path;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -41,8 +42,7 @@ pub fn accelbench_fails(args: &[&str], expected: &[&str]) {
 /// `points` into a scratch folder, and asserts a zero exit, one CSV row per point (`rows` of
 /// them), a row containing every string of `row_with`, and both charts of the primary rays.
 pub fn small_sweep(index: &str, scene: &str, points: &[&str], rows: usize, row_with: &[&str]) {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("s");
+    let (_dir, out) = temp_path("s");
     let head = [
         "sweep",
         index,

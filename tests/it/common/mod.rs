@@ -10,6 +10,7 @@ pub mod drop_one;
 pub mod far;
 pub mod grid_rays;
 pub mod judge;
+pub mod temp;
 
 use accelbench::geometry::Hit;
 use accelbench::geometry::{Ray, TriangleKernelKind};
