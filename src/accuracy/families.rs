@@ -173,26 +173,58 @@ pub(super) fn collect_rays(n: usize, mut attempt: impl FnMut() -> Option<Ray>) -
     rays
 }
 
-/// Rays of `family` for the triangle mesh `tris` (placed at `offset`); `Inside` gives none.
-pub fn triangle_rays(
+/// The primitives of the study's objects as the families aim at them: which families reach
+/// them, and a ray of each such family but `Random` (which aims at the object's box, whatever
+/// its primitives, in [`family_rays`]).
+pub trait FamilyTarget: Sized {
+    /// Whether `family` has rays for these primitives (`Random` always does).
+    fn has(family: Family) -> bool;
+    /// A ray of `family` (one [`Self::has`], not `Random`) at a random one of `prims`, placed
+    /// at `offset`; `None` for a degenerate ray.
+    fn aimed_at(prims: &[Self], family: Family, rng: &mut SplitMix64, offset: f64) -> Option<Ray>;
+}
+
+/// Origins of the `Random` and `EdgesOutside` rays: on the sphere of radius `3R`.
+fn outside(rng: &mut SplitMix64, offset: f64) -> Vec3A {
+    place(unit(rng) * 3.0, offset)
+}
+
+/// A random one of `prims`.
+fn pick<'p, P>(prims: &'p [P], rng: &mut SplitMix64) -> &'p P {
+    &prims[(rng.next_u64() % prims.len() as u64) as usize]
+}
+
+/// Up to `n` rays of `family` for the object of `prims` (placed at `offset`), from `seed`; none
+/// for a family the primitives do not have ([`FamilyTarget::has`]).
+pub fn family_rays<P: FamilyTarget>(
     family: Family,
-    tris: &[Triangle],
+    prims: &[P],
     offset: f64,
     n: usize,
     seed: u64,
 ) -> Vec<Ray> {
     let mut rng = SplitMix64::new(seed);
-    let outside = |rng: &mut SplitMix64| place(unit(rng) * 3.0, offset);
-    if family == Family::Inside {
+    if !P::has(family) {
         return Vec::new();
     }
     collect_rays(n, || match family {
         Family::Random => {
-            let o = outside(&mut rng);
+            let o = outside(&mut rng, offset);
             aimed(o, place(in_cube(&mut rng) * 1.2, offset))
         }
-        Family::EdgesOutside | Family::EdgesInside => {
-            let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+        _ => P::aimed_at(prims, family, &mut rng, offset),
+    })
+}
+
+/// The closed mesh: every family but `Inside`.
+impl FamilyTarget for Triangle {
+    fn has(family: Family) -> bool {
+        family != Family::Inside
+    }
+
+    fn aimed_at(tris: &[Self], family: Family, rng: &mut SplitMix64, offset: f64) -> Option<Ray> {
+        let t = pick(tris, rng);
+        if family.is_edges() {
             let k = (rng.next_u64() % 6) as usize;
             // Vertices, or edge midpoints computed in f32 as a renderer would.
             let target = if k < 3 {
@@ -201,57 +233,42 @@ pub fn triangle_rays(
                 (t.v[k - 3] + t.v[(k - 2) % 3]) * 0.5
             };
             let o = if family == Family::EdgesOutside {
-                outside(&mut rng)
+                outside(rng, offset)
             } else {
-                place(in_cube(&mut rng) * 0.1, offset)
+                place(in_cube(rng) * 0.1, offset)
             };
-            aimed(o, target)
+            return aimed(o, target);
         }
-        Family::Grazing | Family::Inside => {
-            let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
-            let v = t.v.map(f64v);
-            let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
-            let (b1, b2) = (rng.next_unit(), rng.next_unit());
-            let (b1, b2) = if b1 + b2 > 1.0 {
-                (1.0 - b1, 1.0 - b2)
-            } else {
-                (b1, b2)
-            };
-            let q = v[0] + (v[1] - v[0]) * b1 + (v[2] - v[0]) * b2;
-            grazing(&mut rng, q, n, object_size(offset))
-        }
-    })
+        // Grazing.
+        let v = t.v.map(f64v);
+        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        let (b1, b2) = (rng.next_unit(), rng.next_unit());
+        let (b1, b2) = if b1 + b2 > 1.0 {
+            (1.0 - b1, 1.0 - b2)
+        } else {
+            (b1, b2)
+        };
+        let q = v[0] + (v[1] - v[0]) * b1 + (v[2] - v[0]) * b2;
+        grazing(rng, q, n, object_size(offset))
+    }
 }
 
-/// Rays of `family` for the spheres (placed at `offset`); the edge families and `Inside` give
-/// none.
-pub fn sphere_rays(
-    family: Family,
-    spheres: &[Sphere],
-    offset: f64,
-    n: usize,
-    seed: u64,
-) -> Vec<Ray> {
-    let mut rng = SplitMix64::new(seed);
-    if family.is_edges() || family == Family::Inside {
-        return Vec::new();
+/// The spheres: `Random` and `Grazing` (no edges; `Inside` is for the shapes).
+impl FamilyTarget for Sphere {
+    fn has(family: Family) -> bool {
+        matches!(family, Family::Random | Family::Grazing)
     }
-    collect_rays(n, || match family {
-        Family::Random => {
-            let o = place(unit(&mut rng) * 3.0, offset);
-            aimed(o, place(in_cube(&mut rng) * 1.2, offset))
-        }
-        _ => {
-            let s = &spheres[(rng.next_u64() % spheres.len() as u64) as usize];
-            let c = f64v(s.center);
-            let r = s.radius as f64;
-            let d = unit(&mut rng);
-            let side = d.cross(unit(&mut rng)).normalize_or_zero();
-            let b = r * (1.0 - log_uniform(&mut rng, 1e-7, 1e-1));
-            let o = c + side * b - d * (3.0 * r);
-            Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
-        }
-    })
+
+    fn aimed_at(spheres: &[Self], _: Family, rng: &mut SplitMix64, _: f64) -> Option<Ray> {
+        let s = pick(spheres, rng);
+        let c = f64v(s.center);
+        let r = s.radius as f64;
+        let d = unit(rng);
+        let side = d.cross(unit(rng)).normalize_or_zero();
+        let b = r * (1.0 - log_uniform(rng, 1e-7, 1e-1));
+        let o = c + side * b - d * (3.0 * r);
+        Ray::infinite(o.as_vec3(), d.as_vec3()).ok()
+    }
 }
 
 #[cfg(test)]
@@ -264,9 +281,9 @@ mod tests {
             let tris = icosphere_at(1, offset);
             let spheres = spheres_at(offset);
             for f in Family::MESH {
-                assert_eq!(triangle_rays(f, &tris, offset, 50, 1).len(), 50, "{f:?}");
+                assert_eq!(family_rays(f, &tris, offset, 50, 1).len(), 50, "{f:?}");
                 let expected = if f.is_edges() { 0 } else { 50 };
-                assert_eq!(sphere_rays(f, &spheres, offset, 50, 1).len(), expected);
+                assert_eq!(family_rays(f, &spheres, offset, 50, 1).len(), expected);
             }
             // The placed mesh is non-degenerate.
             assert!(tris.iter().all(|t| !t.is_degenerate()), "offset {offset}");

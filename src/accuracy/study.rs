@@ -3,9 +3,7 @@
 //! reference (exact for triangles and spheres, the `f64` mirror for shapes: false misses, false
 //! hits, wrong primitives, relative `t` error) and timed (ns per primitive test).
 
-use super::families::{
-    Family, full_offsets, icosphere_at, object_size, sphere_rays, spheres_at, triangle_rays,
-};
+use super::families::{Family, family_rays, full_offsets, icosphere_at, object_size, spheres_at};
 use super::kernels::{Prims, kernel_closest, time_variant, variants};
 use super::kernels_f64::Ray64;
 use super::metrics::{Tally, rate, reference_closest};
@@ -106,11 +104,11 @@ pub fn run(config: &AccuracyConfig) -> Result<Vec<AccuracyRow>, ShapeError> {
                 |offset, seed| {
                     if spheres {
                         let s = spheres_at(offset);
-                        let rays = sphere_rays(family, &s, offset, config.rays, seed);
+                        let rays = family_rays(family, &s, offset, config.rays, seed);
                         Ok((Prims::Spheres(s), rays))
                     } else {
                         let t = icosphere_at(config.icosphere_level, offset);
-                        let rays = triangle_rays(family, &t, offset, config.rays, seed);
+                        let rays = family_rays(family, &t, offset, config.rays, seed);
                         Ok((Prims::Tris(t), rays))
                     }
                 },
