@@ -4,14 +4,14 @@
 
 use super::kernel_arg::parse_kernel;
 use super::run::{Interrupted, progress_bar};
-use super::suite_args::split_list;
+use super::suite_args::{parse_index_specs, split_list};
 use super::threads::{parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
 use crate::harness::animate::{AnimateConfig, mismatches_fail, run_animation};
 use crate::harness::interrupt;
 use crate::harness::suite::check_specs;
 use crate::harness::workload::{RaySet, SetSizes};
-use crate::index::{IndexSpec, is_peer};
+use crate::index::is_peer;
 use crate::report::animate_report::{summary_markdown, write_animate_report};
 use crate::report::report_dir::ReportDir;
 use crate::report::suite_report::run_id_now;
@@ -75,17 +75,7 @@ pub struct AnimateArgs {
 }
 
 pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
-    let indices: Vec<IndexSpec> = split_list(&a.indices)
-        .iter()
-        .map(|n| {
-            n.parse::<IndexSpec>()
-                .with_context(|| format!("index '{n}'"))
-        })
-        .collect::<anyhow::Result<_>>()?;
-    anyhow::ensure!(
-        !indices.is_empty(),
-        "--indices is empty: name at least one index"
-    );
+    let indices = parse_index_specs(&split_list(&a.indices))?;
     check_specs(&indices, a.kernel)?;
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
     let dir = a

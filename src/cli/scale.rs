@@ -3,7 +3,7 @@
 
 use super::kernel_arg::parse_kernel;
 use super::run::progress_bar;
-use super::suite_args::split_list;
+use super::suite_args::{parse_index_specs, split_list};
 use super::threads::parse_threads;
 use crate::geometry::TriangleKernelKind;
 use crate::harness::suite::{Shard, SuiteConfig, check_specs, run_suite};
@@ -12,7 +12,6 @@ use crate::index::{IndexSpec, index_names};
 use crate::report::scale_report::write_scale_report;
 use crate::report::suite_report::run_id_now;
 use crate::scene::generators::GeneratorSpec;
-use anyhow::Context;
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -56,23 +55,13 @@ pub struct ScaleArgs {
 
 pub fn run(a: ScaleArgs) -> anyhow::Result<()> {
     let specs: Vec<IndexSpec> = match &a.indices {
-        Some(s) => split_list(s)
-            .iter()
-            .map(|n| {
-                n.parse::<IndexSpec>()
-                    .with_context(|| format!("index '{n}'"))
-            })
-            .collect::<anyhow::Result<_>>()?,
+        Some(s) => parse_index_specs(&split_list(s))?,
         None => index_names()
             .into_iter()
             .filter(|n| *n != "brute")
             .map(IndexSpec::named)
             .collect(),
     };
-    anyhow::ensure!(
-        !specs.is_empty(),
-        "--indices is empty: name at least one index"
-    );
     anyhow::ensure!(
         !a.sizes.is_empty(),
         "--sizes is empty: give at least one size"

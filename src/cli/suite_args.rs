@@ -82,6 +82,22 @@ fn parse_packet_size(s: &str) -> Result<usize, String> {
     }
 }
 
+/// The specs of the `--indices` items `names` (as [`split_list`] splits them): an error naming
+/// an item that does not parse, or saying the list is empty.
+pub fn parse_index_specs(names: &[String]) -> anyhow::Result<Vec<IndexSpec>> {
+    anyhow::ensure!(
+        !names.is_empty(),
+        "--indices is empty: name at least one index"
+    );
+    names
+        .iter()
+        .map(|n| {
+            n.parse::<IndexSpec>()
+                .with_context(|| format!("index '{n}'"))
+        })
+        .collect()
+}
+
 /// Splits a comma-separated list whose items may carry their own `key=value,key=value`
 /// parameters (`soup:n=5,seed=2,bunny.obj`, `grid:res=[4,4,4],bvh`): commas inside brackets or
 /// quotes never split, and a piece of the form `key=value` belongs to the item before it.
@@ -153,17 +169,7 @@ impl SuiteArgs {
             Some(s) => split_list(s),
             None => index_names().into_iter().map(str::to_owned).collect(),
         };
-        anyhow::ensure!(
-            !names.is_empty(),
-            "--indices is empty: name at least one index"
-        );
-        let specs: Vec<IndexSpec> = names
-            .iter()
-            .map(|n| {
-                n.parse::<IndexSpec>()
-                    .with_context(|| format!("index '{n}'"))
-            })
-            .collect::<anyhow::Result<_>>()?;
+        let specs = parse_index_specs(&names)?;
         if let Some((_, twice)) = (specs.iter().enumerate()).find(|(i, s)| specs[..*i].contains(s))
         {
             anyhow::bail!(
