@@ -29,7 +29,8 @@ pub trait ObvhsTree: Clone + Send + Sync + 'static {
         stats: &mut S,
         prim: impl FnMut(u32, &mut S, &mut obvhs::ray::Ray) -> bool,
     );
-    /// The tree's size and shape, measured once after the build.
+    /// The tree's size and shape, measured by walking it (for [`Index::info`], after the build
+    /// is timed).
     fn shape(&self) -> TreeShape;
 }
 
@@ -47,11 +48,10 @@ pub struct TreeShape {
 }
 
 /// An obvhs tree as our index: a peer with obvhs's box tests and our triangle test, with its
-/// shape measured at the build.
+/// shape measured when asked ([`Index::info`], outside the timed build).
 #[derive(Clone)]
 pub struct Obvhs<T> {
     tree: T,
-    shape: TreeShape,
 }
 
 impl<T: ObvhsTree> Index for Obvhs<T> {
@@ -61,8 +61,7 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
         let boxes = prim_boxes(geom, T::NAME)?;
         let params = params.preset.build_params();
         let tree = T::build(&boxes, params, &mut Duration::default());
-        let shape = tree.shape();
-        Ok(Obvhs { tree, shape })
+        Ok(Obvhs { tree })
     }
 
     /// obvhs's walk, each primitive through our kernel; for the closest hit obvhs's `tmax`
@@ -92,7 +91,7 @@ impl<T: ObvhsTree> Index for Obvhs<T> {
             depth,
             prim_refs,
             memory_bytes,
-        } = self.shape;
+        } = self.tree.shape();
         IndexInfo {
             nodes,
             leaves,
