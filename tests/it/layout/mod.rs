@@ -6,6 +6,7 @@
 mod cycles;
 mod layers;
 mod scan;
+mod tokens;
 
 use cycles::{Graph, cycles};
 use std::path::PathBuf;
