@@ -21,6 +21,10 @@
  * store-forwarded; written field by field, this program ran 0.81x as fast on the bunny's primary
  * rays and 0.94x on its incoherent rays (README, "Peers").
  *
+ * HITS=1 stores each ray's answer (its t and primitive, 8 bytes) in an array as it goes, as the
+ * suite's timed pass does with every answer (it checks them against its counting pass): without
+ * it the program keeps only the count of hits.
+ *
  * RAY_STRIDE=96 lays the records out 96 bytes apart, as the suite's `Ray` is (the ray's memory
  * traffic without its extra fields). The traced loop is one function, `trace_all`, so that
  * Callgrind's inclusive count of it is the cost of the rays; tools/peers_standalone.sh runs this
@@ -103,10 +107,15 @@ static int cmp_double(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-/* The traced region, one function so that Callgrind's inclusive count of it is the cost of the
- * rays: one RTCRayHit and one rtcIntersect1 per record; returns the number of hits. */
-__attribute__((noinline)) static size_t trace_all(RTCScene s, const float *rays, size_t nrays,
-                                                  size_t stride) {
+/* A ray's answer as a caller keeps it (HITS=1): the distance and the primitive, or prim ~0u. */
+typedef struct { float t; unsigned prim; } Answer;
+
+/* One rtcIntersect1 per record of `rays` (`stride` floats apart); returns the number of hits.
+ * With `out` each ray's answer is also stored. Inlined into the two traced regions below, where
+ * `out` is a constant, so the region without answers pays nothing for the option. */
+static inline __attribute__((always_inline)) size_t trace_loop(RTCScene s, const float *rays,
+                                                               size_t nrays, size_t stride,
+                                                               Answer *out) {
     const __m128 dir_lanes = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -123,9 +132,26 @@ __attribute__((noinline)) static size_t trace_all(RTCScene s, const float *rays,
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(s, &ctx, &rh);
-        hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        int hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        hits += hit;
+        if (out) {
+            out[i].t = rh.ray.tfar;
+            out[i].prim = hit ? rh.hit.primID : ~0u;
+        }
     }
     return hits;
+}
+
+/* The traced regions, one function each so that Callgrind's inclusive count of one is the cost
+ * of the rays: `trace_all` keeps only the count of hits, `trace_all_hits` (HITS=1) also every
+ * ray's answer, as the suite's timed pass does. */
+__attribute__((noinline)) static size_t trace_all(RTCScene s, const float *rays, size_t nrays,
+                                                  size_t stride) {
+    return trace_loop(s, rays, nrays, stride, NULL);
+}
+__attribute__((noinline)) static size_t trace_all_hits(RTCScene s, const float *rays,
+                                                       size_t nrays, size_t stride, Answer *out) {
+    return trace_loop(s, rays, nrays, stride, out);
 }
 
 int main(int argc, char **argv) {
@@ -167,11 +193,19 @@ int main(int argc, char **argv) {
     rtcCommitScene(s);
     double build = now() - t0;
 
+    /* HITS=1 keeps every ray's answer in an array (written before timing, as the suite's is). */
+    const char *hits_env = getenv("HITS");
+    Answer *out = NULL;
+    if (hits_env && strcmp(hits_env, "0")) {
+        out = malloc(nrays * sizeof(Answer));
+        if (!out) { fprintf(stderr, "out of memory\n"); return 1; }
+        memset(out, 0, nrays * sizeof(Answer));
+    }
     double *times = malloc(sizeof(double) * (size_t)repeats);
     size_t hits = 0;
     for (int rep = 0; rep < repeats; rep++) {
         double start = now();
-        hits = trace_all(s, rays, nrays, stride);
+        hits = out ? trace_all_hits(s, rays, nrays, stride, out) : trace_all(s, rays, nrays, stride);
         times[rep] = now() - start;
     }
     qsort(times, (size_t)repeats, sizeof(double), cmp_double);
@@ -181,6 +215,7 @@ int main(int argc, char **argv) {
     rtcReleaseScene(s);
     rtcReleaseDevice(dev);
     free(times);
+    free(out);
     free(rays);
     free(m.v);
     free(m.t);

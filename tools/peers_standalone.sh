@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Peers at their own speed (issue 46): each peer traced by the suite (`accelbench trace`, one
 # thread, single mode) and by a standalone caller on the same `.rays` files, compared
-#  1. in instructions per ray under Callgrind (noise-free): the inclusive count of the traced
-#     region (the suite: `trace_in_parallel`, which `trace` runs twice, timed and counting; the
-#     standalone programs: `trace_all`), and of the peer's own entry point inside it
-#     (`rtcIntersect1`, `BVH8_CPU::Intersect`), so the caller's share per ray is the difference;
+#  1. in instructions per ray under Callgrind (noise-free): the inclusive count of the timed
+#     region (the suite: `harness::timing::time_pass`, one timed pass with --repeats 1; the
+#     standalone programs: `trace_all`), and of the peer's own entry point (`rtcIntersect1`,
+#     `BVH8_CPU::Intersect`, which `trace` calls in its timed and its counting pass), so the
+#     caller's share per ray is the difference;
 #  2. in wall-clock Mrays/s, suite and standalone alternating, ROUNDS pairs.
 #
 # Usage (from the repository root, libembree-dev and g++ installed, valgrind for step 1):
@@ -16,6 +17,8 @@
 # The binaries: $ACCELBENCH for the clock (default: cargo build --release --features peers) and
 # $ACCELBENCH_V3 for Callgrind (default: the same built for AVX2 with --target
 # x86_64-unknown-linux-gnu, which keeps it apart from the native build in the same target dir).
+# HITS=1 (passed on to tools/embree_standalone.c) makes the C program keep every ray's answer,
+# as the suite's timed pass does; without it the program only counts hits.
 # Figures of 2026-12-07: docs/results/2026-12-07-peers-standalone.md.
 set -euo pipefail
 
@@ -77,7 +80,7 @@ if [[ "${CALLGRIND:-1}" != 0 ]]; then
     fi
     g++ -O3 -g -std=c++20 -march=x86-64-v3 -Ithird_party/tinybvh -o "$WORK/tinybvh_standalone_v3" \
         tools/tinybvh_standalone.cpp -lpthread
-    echo "instructions per ray (Callgrind): set, peer, suite: traced region (closest_hits_in, 2 passes) and the peer's part | standalone: trace_all and the peer's part | region suite / standalone, peer part suite / standalone"
+    echo "instructions per ray (Callgrind): set, peer, suite: timed region (time_pass) and the peer's part | standalone: trace_all and the peer's part | region suite / standalone, peer part suite / standalone"
     for set in primary incoherent; do
         rays="$WORK/$set-small.rays"
         n=$(($(stat -c %s "$rays") / 32))
@@ -94,10 +97,10 @@ if [[ "${CALLGRIND:-1}" != 0 ]]; then
             valgrind --tool=callgrind --callgrind-out-file="$c" "${alone[@]}" >"$c.log" 2>&1
             e=$(entry "$peer")
             awk -v set="$set" -v peer="$peer" -v n="$n" \
-                -v sr="$(incl "$s" '::closest_hits_in [')" -v sp="$(incl "$s" "$e")" \
+                -v sr="$(incl "$s" 'timing::time_pass [')" -v sp="$(incl "$s" "$e")" \
                 -v cr="$(incl "$c" ':trace_all')" -v cp="$(incl "$c" "$e")" \
                 'BEGIN { printf "%-10s %-13s %7.1f %7.1f | %7.1f %7.1f | %.3f %.3f\n", set, peer,
-                         sr / (2 * n), sp / (2 * n), cr / n, cp / n, (sr / 2) / cr, (sp / 2) / cp }'
+                         sr / n, sp / (2 * n), cr / n, cp / n, sr / cr, (sp / 2) / cp }'
         done
     done
 fi

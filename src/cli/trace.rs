@@ -4,13 +4,13 @@
 use super::kernel_arg::parse_kernel;
 use super::threads::{parse_threads, with_threads};
 use crate::geometry::TriangleKernelKind;
+use crate::harness::timing::{PassOutput, Query, TimedBatch, counting_pass_in, time_pass};
 use crate::harness::verify::compare_closest;
 use crate::index::{Counters, IndexSpec, TraceMode, build_index, is_peer};
 use crate::rays::{read_rays_limit, write_hits};
 use crate::scene::load_scene;
 use anyhow::Context;
 use std::path::PathBuf;
-use std::time::Instant;
 
 #[derive(Debug, clap::Args)]
 pub struct TraceArgs {
@@ -39,6 +39,11 @@ pub struct TraceArgs {
     /// last-hit, packets4, packets8, packets16, reorder (sorted by origin and direction first).
     #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
     mode: TraceMode,
+    /// The rays are an image this many rays wide in raster order (the protocol's `primary` set:
+    /// 1024): the packet modes then take their packets from screen tiles. Without it, packets
+    /// are runs of consecutive rays.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    image_width: Option<u64>,
     /// Timed passes; the reported time is their median (each pass traces every ray).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     repeats: u32,
@@ -60,24 +65,22 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
             rays.len()
         );
     }
-    let mut hits = vec![None; rays.len()];
-    // The pool is made before the clock starts.
+    // The pool and the batch (the index's own ray form, where it has one) are made before the
+    // clock starts.
+    let width = a.image_width.map(|w| w as usize);
+    let batch = TimedBatch::new(index.as_ref(), a.mode, &rays, width);
+    let mut out = PassOutput::new(Query::Closest, rays.len());
     let mut times = with_threads(threads, || {
         (0..a.repeats)
-            .map(|_| {
-                let start = Instant::now();
-                index.closest_hits_in(a.mode, &rays, &mut hits, None);
-                start.elapsed().as_secs_f64()
-            })
+            .map(|_| time_pass(index.as_ref(), &batch, &mut out).as_secs_f64())
             .collect::<Vec<_>>()
     })?;
     times.sort_by(f64::total_cmp);
     let secs = times[times.len() / 2];
+    let hits = out.hits();
     // Counting pass, separate from the timed one.
-    let mut counted = vec![None; rays.len()];
-    let mut per_ray = vec![Counters::default(); rays.len()];
-    with_threads(threads, || {
-        index.closest_hits_in(a.mode, &rays, &mut counted, Some(&mut per_ray))
+    let (per_ray, counted) = with_threads(threads, || {
+        counting_pass_in(index.as_ref(), Query::Closest, a.mode, &rays, width)
     })?;
     let total: Counters = per_ray.iter().copied().sum();
     let n = rays.len().max(1) as f64;

@@ -12,11 +12,11 @@
 //! pose's bounds.
 
 use super::contain::contained;
-use super::timing::{PassOutput, time_pass};
+use super::timing::timed_pass;
 use super::verify::compare_with_expected;
 use super::workload::{RaySet, SetSizes, camera_model_set, incoherent, primary};
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
-use crate::index::{BuildError, IndexSpec, TraceIndex, TraceMode, build_index, is_peer};
+use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, is_peer};
 use crate::scene::motion::{MotionSpec, frame_geometry};
 use crate::scene::{Scene, SceneGeometry};
 use serde::Serialize;
@@ -261,14 +261,7 @@ fn measure_row(
 ) -> FrameRow {
     let trace: Duration = sets
         .iter()
-        .map(|(set, rays)| {
-            let mut answers = PassOutput::new(set.query(), rays.len());
-            let mut times: Vec<Duration> = (0..repeats.max(1))
-                .map(|_| time_pass(index, TraceMode::Single, rays, &mut answers))
-                .collect();
-            times.sort();
-            times[times.len() / 2]
-        })
+        .map(|(set, rays)| timed_pass(index, set.query(), rays, repeats).0.median)
         .sum();
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     let name = index.name().to_owned();

@@ -9,7 +9,7 @@ use super::set_row::{SetCounts, result_row, row_label};
 use super::suite_config::{Pools, SuiteConfig};
 use super::suite_result::{MismatchRecord, Note, SuiteResult};
 use super::timing::{
-    BatchHits, PassOutput, Query, Timing, counting_pass, counting_pass_in, time_pass,
+    BatchHits, PassOutput, Query, TimedBatch, Timing, counting_pass, counting_pass_in, time_pass,
 };
 use super::verify::{Mismatch, compare_closest};
 use super::workload::RaySet;
@@ -75,6 +75,11 @@ impl Tally<'_> {
 }
 
 impl<'a> SetRun<'a> {
+    /// The set's width as an image, for the packet modes' tiles ([`RaySet::image_width`]).
+    fn width(&self) -> Option<usize> {
+        self.set.image_width(self.rays.len())
+    }
+
     /// Traces brute force's reference on all rays, or on every k-th ray so that
     /// `sample x primitives` fits `cfg.verify_budget`, and notes the coverage.
     pub fn new(
@@ -319,7 +324,7 @@ fn count_mode<'a>(
     let fallbacks_before = fallback_total();
     let (counters, hits) = pools
         .all()
-        .install(|| counting_pass_in(index, query, mode, run.rays));
+        .install(|| counting_pass_in(index, query, mode, run.rays, run.width()));
     let exact_fallbacks = fallback_total() - fallbacks_before;
     let mut tally = Tally {
         scene: &run.scene.name,
@@ -372,23 +377,25 @@ fn timed_passes(
     }
     let repeats = cfg.repeats.max(1);
     let mut out = PassOutput::new(run.set.query(), run.rays.len());
+    // Each entry's rays made ready (its own ray form, where it has one) before any clock starts.
+    let batches: Vec<TimedBatch> = entries
+        .iter()
+        .map(|e| TimedBatch::new(e.index, e.mode, run.rays, run.width()))
+        .collect();
     let mut timings = vec![Vec::new(); entries.len()];
     for (threads, pool) in &pools.0 {
         let mut samples = vec![Vec::with_capacity(repeats); entries.len()];
         let mut kernels = vec![Vec::new(); entries.len()];
         for pass in 1..=repeats {
-            for ((entry, samples), kernels) in
-                entries.iter_mut().zip(&mut samples).zip(&mut kernels)
-            {
+            let each = entries.iter_mut().zip(&batches);
+            for (((entry, batch), samples), kernels) in each.zip(&mut samples).zip(&mut kernels) {
                 if interrupt::requested() {
                     return timings;
                 }
                 if entry.failed.is_some() {
                     continue;
                 }
-                let timed = contained(|| {
-                    pool.install(|| time_pass(entry.index, entry.mode, run.rays, &mut out))
-                });
+                let timed = contained(|| pool.install(|| time_pass(entry.index, batch, &mut out)));
                 match timed {
                     Ok(t) => {
                         samples.push(t);

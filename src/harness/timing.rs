@@ -2,7 +2,7 @@
 
 use crate::geometry::{Hit, Ray};
 use crate::index::trace::tiles;
-use crate::index::{Counters, TraceIndex, TraceMode};
+use crate::index::{Answers, Counters, OwnRays, TraceIndex, TraceMode};
 use std::time::{Duration, Instant};
 
 /// What a batch asks: the closest hit, or only whether anything is hit (occlusion).
@@ -83,8 +83,9 @@ pub fn timed_pass(
     repeats: usize,
 ) -> (Timing, BatchHits) {
     let mut out = PassOutput::new(query, rays.len());
+    let batch = TimedBatch::new(index, TraceMode::Single, rays, None);
     let samples = (0..repeats.max(1))
-        .map(|_| time_pass(index, TraceMode::Single, rays, &mut out))
+        .map(|_| time_pass(index, &batch, &mut out))
         .collect();
     (Timing::of(samples), out.hits())
 }
@@ -112,16 +113,6 @@ impl PassOutput {
             PassOutput::Any(out) => occluded(out),
         }
     }
-}
-
-/// The width of `rays` as an image in raster order, if the harness takes it for one: a batch
-/// of `side * side` rays is a `side x side` image ([`tiles::square_side`]), which the suite's
-/// camera sets (primary, dof, motion, lens) are. The packet modes then form packets from
-/// screen tiles ([`crate::index::trace::tiles`]). Shadow sets are not images (one ray per lit
-/// primary hit and light, misses left out): they are packed in set order, and one whose
-/// length happens to be a square is tiled as if it were an image, with the same answers.
-fn image_width(rays: &[Ray]) -> Option<usize> {
-    tiles::square_side(rays.len())
 }
 
 /// Closest hits of `rays` in `mode`, as an image of `width` columns when given.
@@ -154,17 +145,46 @@ fn any_in(
     }
 }
 
-/// One timed pass: the batch traced once in `mode` on the current rayon pool, no counting,
-/// the answers left in `out` (whose query it answers). Returns the wall time.
-pub fn time_pass(
-    index: &dyn TraceIndex,
+/// A batch made ready for the timed passes of one index in one mode, before any clock starts:
+/// its image width when it is an image in raster order (the packet modes then take packets from
+/// screen tiles, [`tiles`]), and the index's own form of its rays where the index has one
+/// ([`TraceIndex::own_rays`]: a peer library's ray records).
+pub struct TimedBatch<'a> {
+    rays: &'a [Ray],
     mode: TraceMode,
-    rays: &[Ray],
-    out: &mut PassOutput,
-) -> Duration {
-    let width = image_width(rays);
+    width: Option<usize>,
+    own: Option<OwnRays>,
+}
+
+impl<'a> TimedBatch<'a> {
+    /// `rays` ready for `index`'s timed passes in `mode`; `width`: the batch is an image this
+    /// many rays wide in raster order.
+    pub fn new(
+        index: &dyn TraceIndex,
+        mode: TraceMode,
+        rays: &'a [Ray],
+        width: Option<usize>,
+    ) -> TimedBatch<'a> {
+        TimedBatch {
+            rays,
+            mode,
+            width,
+            own: index.own_rays(mode, rays),
+        }
+    }
+}
+
+/// One timed pass: `batch` traced once by `index` (the index it was made for) on the current
+/// rayon pool, no counting, the answers left in `out` (whose query it answers). Returns the
+/// wall time. Never inlined, so that a profile names the timed region.
+#[inline(never)]
+pub fn time_pass(index: &dyn TraceIndex, batch: &TimedBatch, out: &mut PassOutput) -> Duration {
     let start = Instant::now();
-    trace_into(index, mode, rays, width, out, 0, None);
+    match (&batch.own, out) {
+        (Some(own), PassOutput::Closest(out)) => index.trace_own(own, Answers::Closest(out)),
+        (Some(own), PassOutput::Any(out)) => index.trace_own(own, Answers::Any(out)),
+        (None, out) => trace_into(index, batch.mode, batch.rays, batch.width, out, 0, None),
+    }
     start.elapsed()
 }
 
@@ -192,15 +212,16 @@ pub fn counting_pass(
     query: Query,
     rays: &[Ray],
 ) -> (Vec<Counters>, BatchHits) {
-    counting_pass_in(index, query, TraceMode::Single, rays)
+    counting_pass_in(index, query, TraceMode::Single, rays, None)
 }
 
 /// Rays per slice of a counting pass: between slices the pass checks for a SIGINT.
 const COUNTING_SLICE: usize = 1 << 14;
 
-/// [`counting_pass`] with the batch traced in `mode`, in slices of [`COUNTING_SLICE`] rays (of
-/// whole bands of [`tiles::BAND_ROWS`] rows for an image, so that its packets are the timed
-/// passes' tiles: at least one band). A SIGINT ([`super::interrupt::requested`]) stops it
+/// [`counting_pass`] with the batch traced in `mode` (as an image `width` rays wide in raster
+/// order when given), in slices of [`COUNTING_SLICE`] rays (of whole bands of
+/// [`tiles::BAND_ROWS`] rows for an image, so that its packets are the timed passes' tiles: at
+/// least one band). A SIGINT ([`super::interrupt::requested`]) stops it
 /// before the next slice, leaving the rest of the answers unset: a caller that installed the
 /// handler checks it after the pass and drops what the pass returned. (The timed passes are
 /// not cut: each is one call, so that nothing but tracing is timed.)
@@ -209,8 +230,8 @@ pub fn counting_pass_in(
     query: Query,
     mode: TraceMode,
     rays: &[Ray],
+    width: Option<usize>,
 ) -> (Vec<Counters>, BatchHits) {
-    let width = image_width(rays);
     let slice = match width {
         Some(w) => (COUNTING_SLICE / (tiles::BAND_ROWS * w)).max(1) * tiles::BAND_ROWS * w,
         None => COUNTING_SLICE,

@@ -12,6 +12,7 @@
 use super::timing::Query;
 use crate::camera::{CameraError, ModelKind};
 use crate::geometry::{Hit, Ray};
+use crate::index::trace::tiles::square_side;
 use crate::rays::spawn::{offset_origin_scaled, spawn_scale};
 use crate::rays::{CAMERA_SET_SEED, SplitMix64, camera_model_rays, incoherent_rays, primary_rays};
 use crate::scene::Scene;
@@ -80,6 +81,19 @@ impl RaySet {
     /// packets by `run --packets`): the camera sets and the shadow rays of primary hits.
     pub fn is_coherent(self) -> bool {
         !matches!(self, RaySet::Diffuse | RaySet::Ao | RaySet::Incoherent)
+    }
+
+    /// The width of the set's `rays` rays as an image in raster order: the camera sets
+    /// (primary, dof, motion, lens) are `side x side` images, whose packets the packet modes
+    /// take from screen tiles ([`crate::index::trace::tiles`]). `None` for every other set, even
+    /// one whose length happens to be a square (1,048,576 incoherent rays): those are packed
+    /// in set order.
+    pub fn image_width(self, rays: usize) -> Option<usize> {
+        let camera = matches!(
+            self,
+            RaySet::Primary | RaySet::Dof | RaySet::Motion | RaySet::Lens
+        );
+        camera.then(|| square_side(rays)).flatten()
     }
 
     /// The camera model of a camera-model set.
@@ -230,6 +244,24 @@ mod tests {
     use super::*;
     use crate::geometry::TriangleKernelKind;
     use crate::index::{IndexSpec, build_index};
+
+    /// Only camera sets are images; a square count of other rays is not taken for one.
+    #[test]
+    fn only_camera_sets_are_images() {
+        let n = 1024 * 1024;
+        for set in [RaySet::Primary, RaySet::Dof, RaySet::Motion, RaySet::Lens] {
+            assert_eq!(set.image_width(n), Some(1024), "{set:?}");
+        }
+        for set in [
+            RaySet::Incoherent,
+            RaySet::Shadow,
+            RaySet::Diffuse,
+            RaySet::Ao,
+        ] {
+            assert_eq!(set.image_width(n), None, "{set:?}");
+        }
+        assert_eq!(RaySet::Primary.image_width(1024 * 1023), None);
+    }
     use crate::scene::generators;
 
     #[test]

@@ -50,6 +50,7 @@ pub use registry::{
 };
 pub use stats::{Counters, NoStats, Stats};
 pub use trace::{
-    BatchIndex, BoundIndex, MAX_PACKET, ModeFamily, TraceIndex, TraceMode, build_index_on,
+    Answers, BatchIndex, BoundIndex, MAX_PACKET, ModeFamily, OwnRays, TraceIndex, TraceMode,
+    build_index_on,
 };
 pub use wbvh::{Bvh4, Bvh8};

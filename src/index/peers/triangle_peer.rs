@@ -1,9 +1,9 @@
 //! What the triangle-only outside peers (Embree, tinybvh) share: their input, the scene's
-//! triangles in id order, or the reason they skip a scene; and their query, a library call per
-//! query kind.
+//! triangles in id order, or the reason they skip a scene; their query, a library call per
+//! query kind; and the figures of the library's build.
 
 use crate::geometry::{Ray, Triangle};
-use crate::index::{BuildError, HitQuery, Index, NoStats};
+use crate::index::{BuildError, HitQuery, Index, IndexInfo, NoStats};
 use crate::scene::Geometry;
 
 /// The answer to query `Q` of a peer that asks its library: its own [`Index::closest_hit`] or
@@ -50,4 +50,31 @@ pub(crate) fn peer_triangles<'g, G: Geometry>(
         });
     }
     Ok(tris)
+}
+
+/// What a triangle-only peer knows of its library's build, where our heap counter sees nothing
+/// (the library allocates for itself).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LibraryFigures {
+    /// Triangles handed to the library: one primitive reference each (no splits).
+    pub triangles: usize,
+    /// Bytes the library holds for the built structure, as it reports them.
+    pub memory_bytes: usize,
+    /// The most the build held: our copy of the input plus the library's allocations at their
+    /// peak.
+    pub peak_build_bytes: usize,
+}
+
+impl LibraryFigures {
+    /// The peer's [`IndexInfo`] from these figures, `uncounted` (the library's walk reports
+    /// nothing to our `Stats`); the peer adds what else it knows (nodes, `extra`).
+    pub(crate) fn info(&self) -> IndexInfo {
+        IndexInfo {
+            memory_bytes: self.memory_bytes,
+            peak_build_bytes: Some(self.peak_build_bytes),
+            prim_refs: self.triangles,
+            uncounted: true,
+            ..IndexInfo::default()
+        }
+    }
 }

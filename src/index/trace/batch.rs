@@ -3,6 +3,8 @@
 //! ([`each`]). A trait apart from [`Index`], so the query trait imports
 //! nothing of the tracing machinery.
 
+use super::mode::TraceMode;
+use super::own_rays::{Answers, OwnRays};
 use crate::geometry::{Hit, Ray};
 use crate::index::{AnyHit, Closest, HitQuery, Index, Stats};
 use crate::scene::Geometry;
@@ -19,6 +21,26 @@ pub trait BatchIndex: Index {
     /// an index that exists only as a batch technique over another index's single rays
     /// (`embree-p16`), which then gets only `+stream` rows.
     const SINGLE: bool = true;
+
+    /// The batch `rays` in the index's own ray form for tracing in `mode` ([`super::own_rays`]),
+    /// made before the timed passes so that they time the index's calls and not the conversion;
+    /// `None` (the default) when the index traces our `Ray` as it is in that mode. A peer whose
+    /// library reads rays of its own layout has one.
+    fn own_rays(&self, mode: TraceMode, rays: &[Ray]) -> Option<OwnRays> {
+        let _ = (mode, rays);
+        None
+    }
+
+    /// The answers to a batch made by [`BatchIndex::own_rays`] (one per record), traced in
+    /// parallel on the current rayon pool ([`super::parallel::each_chunk`]), no counting: the
+    /// same answers as the batch's rays traced in the mode the records were made for.
+    ///
+    /// # Panics
+    /// By default, since an index that makes no own rays is never given any.
+    fn trace_own(&self, own: &OwnRays, out: Answers<'_>) {
+        let _ = (own, out);
+        unreachable!("an index without own rays is given none");
+    }
 
     /// Closest hits of a chunk of consecutive rays of a batch (the harness's parallel work item,
     /// at most 64 rays; image order for camera sets; `out` and `stats` as long as `rays`) with

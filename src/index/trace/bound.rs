@@ -4,6 +4,7 @@
 
 use super::batch::BatchIndex;
 use super::mode::TraceMode;
+use super::own_rays::{Answers, OwnRays};
 use super::parallel::trace_in_parallel;
 use super::trace_index::TraceIndex;
 use crate::geometry::{Hit, Ray};
@@ -116,6 +117,12 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
             ..self.index.info()
         };
         Ok(())
+    }
+    fn own_rays(&self, mode: TraceMode, rays: &[Ray]) -> Option<OwnRays> {
+        self.index.own_rays(mode, rays)
+    }
+    fn trace_own(&self, own: &OwnRays, out: Answers<'_>) {
+        self.index.trace_own(own, out);
     }
     fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         self.index.closest_hit(&self.geom, ray, &mut NoStats)

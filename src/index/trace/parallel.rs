@@ -57,6 +57,21 @@ pub fn trace_in_parallel<Q: Query, I: BatchIndex, G: Geometry>(
     }
 }
 
+/// `trace` run on each chunk of [`CHUNK`] consecutive records of a batch and its answers, in
+/// parallel on the current rayon pool: the driver of a batch in an index's own ray form
+/// ([`super::BatchIndex::trace_own`]), cut as [`trace_in_parallel`] cuts a batch of `Ray`s.
+pub fn each_chunk<T: Sync, A: Send>(
+    records: &[T],
+    out: &mut [A],
+    trace: impl Fn(&[T], &mut [A]) + Sync,
+) {
+    assert_eq!(records.len(), out.len(), "one output per ray");
+    records
+        .par_chunks(CHUNK)
+        .zip(out.par_chunks_mut(CHUNK))
+        .for_each(|(records, out)| trace(records, out));
+}
+
 /// One work item: a band of an image in tiles (`tiled`: the packet size and the image width),
 /// or a chunk in `mode`.
 fn trace_item<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(

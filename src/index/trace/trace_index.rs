@@ -3,6 +3,7 @@
 //! the index, the geometry and the stats.
 
 use super::mode::TraceMode;
+use super::own_rays::{Answers, OwnRays};
 use crate::geometry::{Hit, Ray};
 use crate::index::{BuildError, Counters, IndexInfo};
 use crate::scene::SceneGeometry;
@@ -46,6 +47,21 @@ pub trait TraceIndex: Send + Sync {
     /// readback of the hits); `None` for every other index.
     fn kernel_time(&self) -> Option<Duration> {
         None
+    }
+    /// The batch in the index's own ray form for `mode`, made before timed passes
+    /// ([`crate::index::BatchIndex::own_rays`]); `None` when it traces our `Ray` as it is.
+    fn own_rays(&self, mode: TraceMode, rays: &[Ray]) -> Option<OwnRays> {
+        let _ = (mode, rays);
+        None
+    }
+    /// The answers to a batch this index made with [`TraceIndex::own_rays`], in parallel, no
+    /// counting ([`crate::index::BatchIndex::trace_own`]).
+    ///
+    /// # Panics
+    /// By default, since an index that makes no own rays is given none.
+    fn trace_own(&self, own: &OwnRays, out: Answers<'_>) {
+        let _ = (own, out);
+        unreachable!("an index without own rays is given none");
     }
     fn closest_hit(&self, ray: &Ray) -> Option<Hit>;
     fn closest_hit_counted(&self, ray: &Ray, counters: &mut Counters) -> Option<Hit>;

@@ -2,10 +2,13 @@
 //! behind our [`Index`] trait: `embree` (build quality medium, `RTC_SCENE_FLAG_ROBUST`, i.e.
 //! watertight traversal, the fair match for our default exact kernel) and `embree-fast` (the
 //! same without the robust flag: Embree's default). One `rtcIntersect1` per closest-hit query,
-//! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]); in the
-//! `stream` mode each chunk of the batch is one `rtcIntersect1M` / `rtcOccluded1M` ray stream
-//! ([`stream`]).
-//! `embree-p16` ([`packet16`]) traces the robust scene 16 consecutive rays at a time.
+//! one `rtcOccluded1` per any-hit query, the ray written as Embree loads it ([`rtc_ray`]); the
+//! timed passes of the `single` mode take the batch in Embree's ray layout, made before the
+//! clock starts ([`BatchIndex::own_rays`]). In the `stream` mode each chunk of the batch is one
+//! `rtcIntersect1M` / `rtcOccluded1M` ray stream ([`stream`]); in the packet modes
+//! (`embree+packets16`) each packet of the harness is one `rtcIntersect16` / `rtcOccluded16`
+//! ([`rtc_packet`]). `embree-p16` ([`packet16`]) traces the robust scene 16 consecutive rays
+//! at a time.
 //!
 //! Embree tests the triangles itself, so its hits are not bit for bit ours: the suite classifies
 //! each disagreement with brute force as a tie or wrong (`harness::peer_check`). Embree counts
@@ -14,19 +17,24 @@
 
 mod device;
 mod packet16;
+mod rtc_packet;
 mod rtc_ray;
 mod stream;
 
-use super::triangle_peer::{library_query, peer_triangles};
+use super::triangle_peer::{LibraryFigures, library_query, peer_triangles};
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::{per_primitive, stopped};
-use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
+use crate::index::trace::parallel::each_chunk;
+use crate::index::{
+    Answers, BatchIndex, BuildError, HitQuery, Index, IndexInfo, OwnRays, Stats, TraceMode,
+};
 use crate::scene::Geometry;
 use device::MonitoredDevice;
 use embree3::{
     BufferUsage, BuildQuality, Format, GeometryKind, INVALID_ID, IntersectContext, RayHit, Scene,
     SceneFlags,
 };
+use rtc_ray::{RayLanes, RayRecord};
 use serde::{Deserialize, Serialize};
 use std::mem::MaybeUninit;
 
@@ -68,12 +76,10 @@ pub struct EmbreeParams {
 /// `RTC_SCENE_FLAG_ROBUST`.
 pub struct EmbreePeer<const ROBUST: bool> {
     scene: Scene<'static>,
-    /// Bytes Embree held after the commit (its memory-monitor callback: allocations minus
-    /// frees, vertex and index buffers included).
-    memory_bytes: usize,
-    /// The most bytes Embree held at once during the build (the same monitor).
-    peak_build_bytes: usize,
-    triangles: usize,
+    /// Its `memory_bytes` are what Embree held after the commit (its memory-monitor callback:
+    /// allocations minus frees, vertex and index buffers included), its peak the most Embree
+    /// held at once during the build (the same monitor).
+    figures: LibraryFigures,
     /// Embree's build threads (`threads=N` of the device: the calling rayon pool's size).
     build_threads: usize,
 }
@@ -140,12 +146,37 @@ impl<const ROBUST: bool> EmbreePeer<ROBUST> {
             return Err(failed("scene commit", error));
         }
         Ok(EmbreePeer {
-            memory_bytes: device.held_bytes(),
-            peak_build_bytes: device.peak_bytes(),
+            figures: LibraryFigures {
+                triangles: n,
+                memory_bytes: device.held_bytes(),
+                peak_build_bytes: device.peak_bytes(),
+            },
             scene,
-            triangles: n,
             build_threads,
         })
+    }
+}
+
+impl<const ROBUST: bool> EmbreePeer<ROBUST> {
+    /// Embree's closest hit of a ray given as its `RTCRay` lanes: one `rtcIntersect1`.
+    #[inline(always)]
+    fn intersect(&self, ctx: &mut IntersectContext, lanes: &RayLanes) -> Option<Hit> {
+        let mut slot = MaybeUninit::<RayHit>::uninit();
+        let rh = rtc_ray::init_ray_hit(&mut slot, lanes);
+        self.scene.intersect(ctx, rh);
+        (rh.hit.geomID != INVALID_ID).then_some(Hit {
+            t: rh.ray.tfar,
+            prim: rh.hit.primID,
+        })
+    }
+
+    /// Whether Embree finds anything on a ray given as its `RTCRay` lanes: one
+    /// `rtcOccluded1`.
+    #[inline(always)]
+    fn occluded(&self, ctx: &mut IntersectContext, lanes: &RayLanes) -> bool {
+        let mut slot = MaybeUninit::uninit();
+        self.scene
+            .occluded(ctx, rtc_ray::init_ray(&mut slot, lanes))
     }
 }
 
@@ -173,37 +204,76 @@ impl<const ROBUST: bool> Index for EmbreePeer<ROBUST> {
 
     #[inline]
     fn closest_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> Option<Hit> {
-        let mut slot = MaybeUninit::<RayHit>::uninit();
-        let rh = rtc_ray::init_ray_hit(&mut slot, ray);
-        self.scene
-            .intersect(&mut IntersectContext::incoherent(), rh);
-        (rh.hit.geomID != INVALID_ID).then_some(Hit {
-            t: rh.ray.tfar,
-            prim: rh.hit.primID,
-        })
+        let ctx = &mut IntersectContext::incoherent();
+        self.intersect(ctx, &rtc_ray::ray_lanes(ray))
     }
 
     #[inline]
     fn any_hit<G: Geometry, S: Stats>(&self, _: &G, ray: &Ray, _: &mut S) -> bool {
-        let mut slot = MaybeUninit::uninit();
-        let r = rtc_ray::init_ray(&mut slot, ray);
-        self.scene.occluded(&mut IntersectContext::incoherent(), r)
+        let ctx = &mut IntersectContext::incoherent();
+        self.occluded(ctx, &rtc_ray::ray_lanes(ray))
     }
 
     fn info(&self) -> IndexInfo {
         IndexInfo {
-            memory_bytes: self.memory_bytes,
-            peak_build_bytes: Some(self.peak_build_bytes),
-            prim_refs: self.triangles,
-            uncounted: true,
             extra: vec![("build_threads".into(), self.build_threads as f64)],
-            ..IndexInfo::default()
+            ..self.figures.info()
         }
     }
 }
 
 impl<const ROBUST: bool> BatchIndex for EmbreePeer<ROBUST> {
     const STREAM: bool = true;
+
+    /// In `single` mode, the batch as 32-byte records of Embree's ray ([`rtc_ray::record`], the
+    /// range check applied): a timed pass then writes each record's two lanes and a third of
+    /// constants into the call's `RTCRayHit`, as `tools/embree_standalone.c` does with the
+    /// protocol's records.
+    fn own_rays(&self, mode: TraceMode, rays: &[Ray]) -> Option<OwnRays> {
+        let records = || rays.iter().map(rtc_ray::record).collect::<Vec<RayRecord>>();
+        (mode == TraceMode::Single).then(|| OwnRays::new(records()))
+    }
+
+    /// One `rtcIntersect1` / `rtcOccluded1` per record, one intersect context per chunk.
+    fn trace_own(&self, own: &OwnRays, out: Answers<'_>) {
+        let records = own.records::<RayRecord>();
+        match out {
+            Answers::Closest(out) => each_chunk(records, out, |records, out| {
+                let ctx = &mut IntersectContext::incoherent();
+                for (r, o) in records.iter().zip(out) {
+                    *o = self.intersect(ctx, &rtc_ray::record_lanes(r));
+                }
+            }),
+            Answers::Any(out) => each_chunk(records, out, |records, out| {
+                let ctx = &mut IntersectContext::incoherent();
+                for (r, o) in records.iter().zip(out) {
+                    *o = self.occluded(ctx, &rtc_ray::record_lanes(r));
+                }
+            }),
+        }
+    }
+
+    /// A packet of the harness (at most 16 neighbouring rays: a screen tile of a camera set) as
+    /// one `rtcIntersect16` ([`rtc_packet`]).
+    fn closest_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        _: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        _: &mut [S],
+    ) {
+        rtc_packet::closest_hits(&self.scene, rays, out);
+    }
+
+    fn any_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        _: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        _: &mut [S],
+    ) {
+        rtc_packet::any_hits(&self.scene, rays, out);
+    }
 
     /// The chunk as one Embree ray stream ([`stream`]).
     fn closest_hits_stream<G: Geometry, S: Stats>(
@@ -224,5 +294,43 @@ impl<const ROBUST: bool> BatchIndex for EmbreePeer<ROBUST> {
         _: &mut [S],
     ) {
         stream::any_hits(&self.scene, rays, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::TriangleKernelKind;
+    use crate::index::{IndexSpec, build_index};
+    use glam::Vec3;
+
+    /// The timed passes' own rays answer as the counting pass's `Ray`s do, ray for ray, for
+    /// closest and any hits, a ray out of Embree's range included; other modes make none.
+    #[test]
+    fn own_rays_answer_as_rays_do() {
+        let scene = crate::scene::generators::generate("icosphere", 500, 1).unwrap();
+        let spec = IndexSpec::named("embree");
+        let index = build_index(&spec, &scene.geometry(), TriangleKernelKind::Exact).unwrap();
+        let mut rays: Vec<Ray> = (0..300)
+            .map(|i| {
+                let a = i as f32 * 0.37;
+                let origin = Vec3::new(3.0 * a.cos(), 3.0 * a.sin(), (i % 7) as f32 - 3.0);
+                let target = Vec3::new((a * 3.1).sin(), (a * 1.7).cos(), (a * 0.9).sin()) * 0.8;
+                Ray::new(origin, target - origin, 0.0, f32::INFINITY).unwrap()
+            })
+            .collect();
+        rays.push(Ray::new(Vec3::splat(2e18), -Vec3::ONE, 0.0, f32::INFINITY).unwrap());
+        assert!(index.own_rays(TraceMode::Stream, &rays).is_none());
+        let own = index.own_rays(TraceMode::Single, &rays).unwrap();
+        let mut closest = vec![None; rays.len()];
+        index.trace_own(&own, Answers::Closest(&mut closest));
+        let expected: Vec<_> = rays.iter().map(|r| index.closest_hit(r)).collect();
+        assert_eq!(closest, expected);
+        assert!(closest.iter().flatten().count() > 100);
+        assert_eq!(closest.last(), Some(&None));
+        let mut any = vec![true; rays.len()];
+        index.trace_own(&own, Answers::Any(&mut any));
+        let expected: Vec<_> = rays.iter().map(|r| index.any_hit(r)).collect();
+        assert_eq!(any, expected);
     }
 }

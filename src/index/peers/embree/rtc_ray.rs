@@ -18,7 +18,12 @@ use std::mem::{MaybeUninit, offset_of, size_of};
 
 /// `RTCRay` (12 four-byte fields: origin, `tnear`, direction, `time`, `tfar`, `mask`, `id`,
 /// `flags`) as three lanes.
-type RayLanes = [Vec4; 3];
+pub(super) type RayLanes = [Vec4; 3];
+/// A ray as the peer's own rays keep it for the timed passes ([`record`]): the lanes of
+/// [`RayLanes`] that differ from ray to ray, origin with `tnear` and direction with `tfar` in
+/// `time`'s place, 32 bytes (a `.rays` record's layout, as `tools/embree_standalone.c` reads
+/// it).
+pub(super) type RayRecord = [Vec4; 2];
 /// `RTCRayHit`: the ray's three lanes, then `RTCHit` (`Ng`, `u`, `v`, `primID`, `geomID`,
 /// `instID[1]`) as two.
 type RayHitLanes = [Vec4; 5];
@@ -48,7 +53,7 @@ fn bits(x: u32) -> f32 {
 /// Our ray's three `RTCRay` lanes: `[t_min, t_max]` as `[tnear, tfar]`, time 0, every mask bit
 /// set, id and flags 0; [`INACTIVE`] for a ray out of Embree's range.
 #[inline(always)]
-fn ray_lanes(ray: &Ray) -> RayLanes {
+pub(super) fn ray_lanes(ray: &Ray) -> RayLanes {
     if !in_range(ray) {
         return INACTIVE;
     }
@@ -56,6 +61,23 @@ fn ray_lanes(ray: &Ray) -> RayLanes {
         ray.origin.extend(ray.t_min),
         ray.dir.extend(0.0),
         Vec4::new(ray.t_max, bits(u32::MAX), 0.0, 0.0),
+    ]
+}
+
+/// `ray` as a [`RayRecord`] (its range check applied, as in [`ray_lanes`]).
+pub(super) fn record(ray: &Ray) -> RayRecord {
+    let [o, d, t] = ray_lanes(ray);
+    [o, d.with_w(t.x)]
+}
+
+/// The [`RayLanes`] of a [`RayRecord`]: `tfar` moved to its lane, time 0, every mask bit set,
+/// id and flags 0.
+#[inline(always)]
+pub(super) fn record_lanes(r: &RayRecord) -> RayLanes {
+    [
+        r[0],
+        r[1].with_w(0.0),
+        Vec4::new(r[1].w, bits(u32::MAX), 0.0, 0.0),
     ]
 }
 
@@ -87,26 +109,29 @@ const INACTIVE: RayLanes = [
     Vec4::new(-1.0, f32::from_bits(u32::MAX), 0.0, 0.0),
 ];
 
-/// `slot` initialized as Embree's ray for `ray` (see [`ray_lanes`]).
+/// `slot` initialized as Embree's ray of `lanes` (see [`ray_lanes`]).
 #[inline(always)]
 pub(super) fn init_ray<'a>(
     slot: &'a mut MaybeUninit<embree3::Ray>,
-    ray: &Ray,
+    lanes: &RayLanes,
 ) -> &'a mut embree3::Ray {
     // SAFETY: `RTCRay` is `repr(C)`, 16-byte aligned and 48 bytes of `f32`/`u32` fields in the
     // lanes' order (checked above), so the write initializes every field, and every bit pattern
     // is a valid value of those fields.
     unsafe {
-        slot.as_mut_ptr().cast::<RayLanes>().write(ray_lanes(ray));
+        slot.as_mut_ptr().cast::<RayLanes>().write(*lanes);
         slot.assume_init_mut()
     }
 }
 
-/// `slot` initialized as Embree's ray for `ray` with no hit yet (`geomID` and `instID`
-/// invalid).
+/// `slot` initialized as Embree's ray of `lanes` (see [`ray_lanes`]) with no hit yet (`geomID`
+/// and `instID` invalid).
 #[inline(always)]
-pub(super) fn init_ray_hit<'a>(slot: &'a mut MaybeUninit<RayHit>, ray: &Ray) -> &'a mut RayHit {
-    let [o, d, t] = ray_lanes(ray);
+pub(super) fn init_ray_hit<'a>(
+    slot: &'a mut MaybeUninit<RayHit>,
+    lanes: &RayLanes,
+) -> &'a mut RayHit {
+    let [o, d, t] = *lanes;
     let none = bits(INVALID_ID);
     let lanes: RayHitLanes = [o, d, t, Vec4::ZERO, Vec4::new(0.0, none, none, none)];
     // SAFETY: as in `init_ray`: `RTCRayHit` is `RTCRay` then `RTCHit`, 80 bytes of 16-byte
@@ -128,7 +153,7 @@ mod tests {
         let mut slot = MaybeUninit::new(RayHit::from(embree3::Ray::new(
             [0.0; 3], [1.0; 3], 9.0, 9.0, 9.0, 0, 9,
         )));
-        let rh = init_ray_hit(&mut slot, &ray);
+        let rh = init_ray_hit(&mut slot, &ray_lanes(&ray));
         let r = rh.ray;
         assert_eq!([r.org_x, r.org_y, r.org_z, r.tnear], [1.0, 2.0, 3.0, 0.5]);
         assert_eq!(
@@ -139,8 +164,16 @@ mod tests {
         let h = rh.hit;
         assert_eq!([h.geomID, h.instID[0]], [INVALID_ID, INVALID_ID]);
         let mut slot = MaybeUninit::new(embree3::Ray::new([0.0; 3], [1.0; 3], 9.0, 9.0, 9.0, 0, 9));
-        let plain = init_ray(&mut slot, &ray);
+        let plain = init_ray(&mut slot, &ray_lanes(&ray));
         assert_eq!(plain.tfar.to_bits(), 7.0f32.to_bits());
+        for ray in [
+            ray,
+            Ray::new([2e18; 3].into(), dir.into(), 0.5, 7.0).unwrap(),
+        ] {
+            let via_record = record_lanes(&record(&ray)).map(|l| l.to_array().map(f32::to_bits));
+            let direct = ray_lanes(&ray).map(|l| l.to_array().map(f32::to_bits));
+            assert_eq!(via_record, direct);
+        }
         assert_eq!([plain.mask, plain.id, plain.flags], [u32::MAX, 0, 0]);
     }
 }

@@ -7,7 +7,7 @@
 //! The rays are written as in single-ray calls ([`super::rtc_ray`]), in a stack array of at most
 //! [`STREAM`] rays: no allocation per chunk.
 
-use super::rtc_ray::{init_ray, init_ray_hit};
+use super::rtc_ray::{init_ray, init_ray_hit, ray_lanes};
 use crate::geometry::{Hit, Ray};
 use crate::index::kit::box_tree::stream::coherent;
 use embree3::sys::{RTCRay, RTCRayHit, rtcIntersect1M, rtcOccluded1M};
@@ -29,7 +29,7 @@ pub(super) fn closest_hits(scene: &Scene, rays: &[Ray], out: &mut [Option<Hit>])
     let mut slots = [const { MaybeUninit::<RayHit>::uninit() }; STREAM];
     for (rays, out) in rays.chunks(STREAM).zip(out.chunks_mut(STREAM)) {
         for (slot, ray) in slots.iter_mut().zip(rays) {
-            init_ray_hit(slot, ray);
+            init_ray_hit(slot, &ray_lanes(ray));
         }
         let mut ctx = context(rays);
         // SAFETY: the first `rays.len()` slots are initialized `RTCRayHit`s (16-byte aligned,
@@ -59,7 +59,7 @@ pub(super) fn any_hits(scene: &Scene, rays: &[Ray], out: &mut [bool]) {
     let mut slots = [const { MaybeUninit::<embree3::Ray>::uninit() }; STREAM];
     for (rays, out) in rays.chunks(STREAM).zip(out.chunks_mut(STREAM)) {
         for (slot, ray) in slots.iter_mut().zip(rays) {
-            init_ray(slot, ray);
+            init_ray(slot, &ray_lanes(ray));
         }
         let mut ctx = context(rays);
         // SAFETY: as in `closest_hits`, with `RTCRay`s.

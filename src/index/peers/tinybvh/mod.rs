@@ -24,7 +24,7 @@
 //!   keeps beside it are `kept_bytes`, and the build's peak is counted through tinybvh's
 //!   allocation hooks.
 
-use super::triangle_peer::{library_query, peer_triangles};
+use super::triangle_peer::{LibraryFigures, library_query, peer_triangles};
 use crate::geometry::{Hit, Ray};
 use crate::index::build_budget::per_primitive;
 use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
@@ -96,17 +96,15 @@ pub const TINYBVH_BUILD_BYTES_PER_PRIM: usize = 560;
 /// built from.
 pub struct TinyBvh8 {
     bvh: *mut Bvh8Cpu,
-    triangles: usize,
+    /// Its `memory_bytes` are the `BVH8_CPU` block array's, as tinybvh allocates it; the peak
+    /// is the vertex copy's plus tinybvh's allocations at their peak.
+    figures: LibraryFigures,
     /// Inner and leaf nodes of the 8-wide tree.
     nodes: usize,
     leaves: usize,
-    /// Bytes of the `BVH8_CPU` block array, as tinybvh allocates it.
-    memory_bytes: usize,
     /// What tinybvh holds beside the block array: the binary and 8-wide trees it was converted
     /// from, which `BVH8_CPU` keeps.
     kept_bytes: usize,
-    /// The most the build held: the vertex copy plus tinybvh's allocations at their peak.
-    peak_build_bytes: usize,
 }
 
 // SAFETY: after the build the C++ object is only read: `Intersect` and `IsOccluded` are `const`
@@ -164,12 +162,14 @@ impl Index for TinyBvh8 {
         };
         Ok(TinyBvh8 {
             bvh,
-            triangles: tris.len(),
+            figures: LibraryFigures {
+                triangles: tris.len(),
+                memory_bytes: bytes as usize,
+                peak_build_bytes: std::mem::size_of_val(verts.as_slice()) + peak as usize,
+            },
             nodes: nodes as usize,
             leaves: leaves as usize,
-            memory_bytes: bytes as usize,
             kept_bytes: kept as usize,
-            peak_build_bytes: std::mem::size_of_val(verts.as_slice()) + peak as usize,
         })
     }
 
@@ -217,12 +217,8 @@ impl Index for TinyBvh8 {
         IndexInfo {
             nodes: self.nodes,
             leaves: self.leaves,
-            memory_bytes: self.memory_bytes,
-            peak_build_bytes: Some(self.peak_build_bytes),
-            prim_refs: self.triangles,
-            uncounted: true,
             extra: vec![("kept_bytes".into(), self.kept_bytes as f64)],
-            ..IndexInfo::default()
+            ..self.figures.info()
         }
     }
 }
