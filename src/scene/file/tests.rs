@@ -333,8 +333,8 @@ fn bad_keyframes_name_the_file_the_entry_and_the_key() {
     for (keys, expect) in [
         ("[]", "keyframes = [] has no key"),
         ("[{ t = 1.5 }]", "keyframe 1 of 1: t = 1.5 is invalid"),
-        ("[{ t = -0.01 }]", "t = -0.01 is invalid"),
-        ("[{ t = nan }]", "t = NaN is invalid"),
+        ("[{ t = -0.01 }]", "keyframe 1 of 1: t = -0.01 is invalid"),
+        ("[{ t = nan }]", "keyframe 1 of 1: t = NaN is invalid"),
         (
             "[{ t = 0.5 }, { t = 0.5 }]",
             "keyframe 2 of 2: t = 0.5 is not after the previous key's t = 0.5",
@@ -342,15 +342,15 @@ fn bad_keyframes_name_the_file_the_entry_and_the_key() {
         ("[{ t = 0.5 }, { t = 0.2 }, { t = 1 }]", "keyframe 2 of 3"),
         (
             "[{ t = 0, rotate = { axis = [0, 0, 0], degrees = 10 } }]",
-            "rotation axis [0.0, 0.0, 0.0] is invalid",
+            "keyframe 1 of 1: rotation axis [0.0, 0.0, 0.0] is invalid",
         ),
         (
             "[{ t = 0, translate = [nan, 0, 0] }]",
-            "translate [NaN, 0.0, 0.0] is invalid",
+            "keyframe 1 of 1: translate [NaN, 0.0, 0.0] is invalid",
         ),
         (
             "[{ t = 0, rotate = { axis = [0, 1, 0], degrees = inf } }]",
-            "rotation angle inf degrees",
+            "keyframe 1 of 1: rotation angle inf degrees",
         ),
     ] {
         let msg = error(&format!("{mesh}keyframes = {keys}\n"));
