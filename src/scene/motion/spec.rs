@@ -20,9 +20,9 @@ pub enum MotionSpec {
     Keyframes,
 }
 
-/// The motions, with their parameters and defaults, for messages.
-const KNOWN: &str =
-    "twist[:turns=0.25], wave[:amplitude=0.02,waves=2], cloth[:drop=0.5,ball=0.3], keyframes";
+/// The deformations, with their parameters and defaults, for messages (`keyframes` besides).
+const DEFORMATIONS: &str =
+    "twist[:turns=0.25], wave[:amplitude=0.02,waves=2], cloth[:drop=0.5,ball=0.3]";
 
 impl MotionSpec {
     /// The motion `animate` uses on `scene` when `asked` for one (`None`: not asked):
@@ -34,7 +34,7 @@ impl MotionSpec {
             Some(MotionSpec::Keyframes) if !keyed => Err(format!(
                 "--motion keyframes: scene '{}' has no keyframes; give a scene file whose \
                  [[mesh]], [[generator]], [[sphere]] or [[shape]] tables have a keyframes key, \
-                 or choose a motion from {KNOWN}",
+                 or choose one of {DEFORMATIONS}",
                 scene.name
             )),
             Some(spec) => Ok(spec),
@@ -79,7 +79,11 @@ impl FromStr for MotionSpec {
             "wave" => (&["amplitude", "waves"], &[(0.0, 1.0), (0.0, 64.0)]),
             "cloth" => (&["drop", "ball"], &[(0.0, 4.0), (0.0, 1.0)]),
             "keyframes" => (&[], &[]),
-            other => return Err(format!("unknown motion '{other}': choose one of {KNOWN}")),
+            other => {
+                return Err(format!(
+                    "unknown motion '{other}': choose one of {DEFORMATIONS}, keyframes"
+                ));
+            }
         };
         let mut values: Vec<Option<f32>> = vec![None; keys.len()];
         for item in rest.split(',').map(str::trim).filter(|i| !i.is_empty()) {
