@@ -28,10 +28,12 @@ pub struct AnimateArgs {
     #[arg(long)]
     scene: String,
     /// How the scene moves: `twist[:turns=0.25]` (about the vertical axis, more with height),
-    /// `wave[:amplitude=0.02,waves=2]` (a travelling wave along x lifts it along y) or
-    /// `cloth[:drop=0.5,ball=0.3]` (it falls like a sheet and drapes over a ball).
-    #[arg(long, default_value = "twist")]
-    motion: MotionSpec,
+    /// `wave[:amplitude=0.02,waves=2]` (a travelling wave along x lifts it along y),
+    /// `cloth[:drop=0.5,ball=0.3]` (it falls like a sheet and drapes over a ball) or
+    /// `keyframes` (a scene file's keyframed objects move by their keys) [default: keyframes
+    /// for a scene file with keyframes, else twist].
+    #[arg(long)]
+    motion: Option<MotionSpec>,
     /// Frames, the first being the motion's start (time 0) and the last its end (time 1).
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=10_000))]
     frames: u32,
@@ -78,6 +80,10 @@ pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
     let indices = parse_index_specs(&split_list(&a.indices))?;
     check_specs(&indices, a.kernel)?;
     let scene = load_scene(&a.scene).with_context(|| format!("loading scene '{}'", a.scene))?;
+    let motion = MotionSpec::for_scene(a.motion, &scene).map_err(anyhow::Error::msg)?;
+    if motion != MotionSpec::Keyframes && !scene.keyframed.is_empty() {
+        eprintln!("note: --motion {motion} deforms the static placement; the keyframes are unused");
+    }
     let dir = a
         .out
         .clone()
@@ -85,7 +91,7 @@ pub fn run(a: AnimateArgs) -> anyhow::Result<()> {
     // Claimed first: a second run on the same folder is refused before anything is measured.
     let claim = ReportDir::claim(&dir)?;
     let cfg = AnimateConfig {
-        motion: a.motion,
+        motion,
         frames: a.frames as usize,
         indices,
         sets: a.rays,

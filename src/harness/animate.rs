@@ -17,7 +17,7 @@ use super::verify::compare_with_expected;
 use super::workload::{RaySet, SetSizes, camera_model_set, incoherent, primary};
 use crate::geometry::{Hit, Ray, TriangleKernelKind};
 use crate::index::{BuildError, IndexSpec, TraceIndex, build_index, is_peer};
-use crate::scene::motion::{MotionSpec, frame_geometry};
+use crate::scene::motion::MotionSpec;
 use crate::scene::{Scene, SceneGeometry};
 use serde::Serialize;
 use std::time::{Duration, Instant};
@@ -25,6 +25,7 @@ use std::time::{Duration, Instant};
 /// What to animate and measure.
 #[derive(Debug, Clone)]
 pub struct AnimateConfig {
+    /// `keyframes` only for a scene with keyframes ([`MotionSpec::for_scene`]).
     pub motion: MotionSpec,
     /// Frames, at least 2: frame `f` is the motion at time `f / (frames - 1)`.
     pub frames: usize,
@@ -152,7 +153,7 @@ pub fn run_animation(
         }
         progress(frame);
         let t = frame as f32 / (cfg.frames - 1) as f32;
-        let geom = frame_geometry(scene, cfg.motion.motion(), t);
+        let geom = cfg.motion.frame(scene, t)?;
         let expected = brute_hits(&geom, cfg.kernel, &sample)?;
         for c in &mut contenders {
             let measure = |index: &dyn TraceIndex, update: Update, update_time: Duration| {

@@ -10,6 +10,7 @@ pub mod generators;
 mod geometry;
 mod geometry_traits;
 pub mod gltf;
+pub mod keyframes;
 mod load;
 mod mapped;
 mod material;
@@ -95,6 +96,10 @@ pub struct Scene {
     pub materials: MaterialMap,
     /// Rectangular area lights (in addition to `lights`).
     pub area_lights: Vec<AreaLight>,
+    /// The scene file's keyframed entries, in file order, with the primitives each produced
+    /// (disjoint ranges). The primitives above are the static placement, the keyframes not
+    /// applied; `animate` applies them ([`motion::keyframed_geometry`]).
+    pub keyframed: Vec<keyframes::KeyframedObject>,
 }
 
 impl Scene {

@@ -1,5 +1,6 @@
-//! Scenes that move: refitted box trees keep the hit contract on every frame, indices without a
-//! refit say so, and `accelbench animate` writes a verified report per frame.
+//! Scenes that move: refitted box trees keep the hit contract on every frame (also under a scene
+//! file's keyframes), indices without a refit say so, and `accelbench animate` writes a
+//! verified report per frame.
 
 use crate::common::cli::{accelbench_fails, accelbench_ok};
 #[cfg(unix)]
@@ -9,8 +10,8 @@ use crate::common::{agreement_rays, assert_no_mismatch};
 use accelbench::geometry::TriangleKernelKind;
 use accelbench::harness::verify::compare_indices;
 use accelbench::index::{BuildError, IndexSpec, build_index};
-use accelbench::scene::motion::{MotionSpec, frame_geometry};
-use accelbench::scene::{Scene, generators};
+use accelbench::scene::motion::MotionSpec;
+use accelbench::scene::{Scene, generators, load_scene};
 
 /// The extra figure `key` of an index's info.
 fn extra(index: &dyn accelbench::index::TraceIndex, key: &str) -> f64 {
@@ -26,12 +27,12 @@ fn assert_refit_agrees(spec: &str, scene: &Scene, motion: &str, frames: usize) {
     let brute = IndexSpec::named("brute");
     let k = TriangleKernelKind::Exact;
     let rays = agreement_rays(scene, 400);
-    let first = frame_geometry(scene, motion.motion(), 0.0);
+    let first = motion.frame(scene, 0.0).unwrap();
     let mut index = build_index(&spec, &first, k).unwrap();
     assert!(index.can_refit(), "{spec}");
     let sah_first = extra(index.as_ref(), "sah_cost");
     for f in 1..frames {
-        let frame = frame_geometry(scene, motion.motion(), f as f32 / (frames - 1) as f32);
+        let frame = motion.frame(scene, f as f32 / (frames - 1) as f32).unwrap();
         index.refit(&frame).unwrap();
         let reference = build_index(&brute, &frame, k).unwrap();
         let what = format!("{spec} refitted to frame {f} of {motion}");
@@ -76,13 +77,13 @@ fn compare_after_wave(spec: &str, scene: &Scene) -> Vec<accelbench::harness::ver
     let k = TriangleKernelKind::Exact;
     let mut index = build_index(
         &spec.parse().unwrap(),
-        &frame_geometry(scene, motion.motion(), 0.0),
+        &motion.frame(scene, 0.0).unwrap(),
         k,
     )
     .unwrap();
     let mut last = None;
     for t in [0.3, 0.6, 0.9] {
-        let frame = frame_geometry(scene, motion.motion(), t);
+        let frame = motion.frame(scene, t).unwrap();
         index.refit(&frame).unwrap();
         last = Some(frame);
     }
@@ -199,7 +200,101 @@ fn animate_refuses_bad_motions_sets_and_frame_counts() {
         &["ray set 'shadow'", "primary"],
     );
     accelbench_fails(&with(&["--frames", "1"]), &["--frames"]);
+    accelbench_fails(
+        &with(&["--motion", "keyframes"]),
+        &["--motion keyframes", "has no keyframes", "twist"],
+    );
     accelbench_fails(&with(&["--indices", "nope"]), &["unknown index 'nope'"]);
+}
+
+/// The example scene file with keyframes: its entries move differently (the icosphere slides,
+/// the soup turns and rises, the box tumbles, the sphere orbits), the floor stays, and refitted
+/// box trees keep the hit contract on every frame.
+#[test]
+fn keyframed_scene_files_move_their_entries_and_refits_agree() {
+    let scene = load_scene("scenes/keyframes.toml").unwrap();
+    assert_eq!(scene.keyframed.len(), 4);
+    let keys = MotionSpec::Keyframes;
+    let start = keys.frame(&scene, 0.0).unwrap();
+    let end = keys.frame(&scene, 1.0).unwrap();
+    let floor = scene.keyframed[0].triangles.start;
+    assert!(floor > 0, "the terrain comes first and has no keys");
+    assert_eq!(start.triangles[..floor], end.triangles[..floor]);
+    // The first keys are identities or held before: every object starts where it is placed.
+    assert_eq!(start.triangles[..], scene.triangles[..]);
+    let ico = scene.keyframed[0].triangles.clone();
+    let shift = end.triangles[ico.start].v[0] - start.triangles[ico.start].v[0];
+    assert!(
+        (shift - glam::Vec3A::new(1.6, 0.0, 0.0)).length() < 1e-5,
+        "{shift}"
+    );
+    assert_ne!(
+        start.triangles[ico.end], end.triangles[ico.end],
+        "the soup moves"
+    );
+    assert_ne!(start.spheres[..], end.spheres[..]);
+    assert_ne!(start.shapes[..], end.shapes[..]);
+    let rays = agreement_rays(&scene, 400);
+    let k = TriangleKernelKind::Exact;
+    for spec in ["bvh", "bvh4", "bvh8"] {
+        let mut index = build_index(&IndexSpec::named(spec), &start, k).unwrap();
+        for f in 1..5 {
+            let frame = keys.frame(&scene, f as f32 / 4.0).unwrap();
+            // Bit for bit the same frame when asked again.
+            assert_eq!(
+                frame.triangles[..],
+                keys.frame(&scene, f as f32 / 4.0).unwrap().triangles[..]
+            );
+            index.refit(&frame).unwrap();
+            let brute = build_index(&IndexSpec::named("brute"), &frame, k).unwrap();
+            let m = compare_indices(brute.as_ref(), index.as_ref(), &rays);
+            assert_no_mismatch(&format!("{spec} frame {f}"), &scene, rays.len(), &m);
+        }
+    }
+}
+
+/// `animate` on a keyframed scene file animates by its keyframes without being told, every
+/// frame verified: refit and rebuild rows for bvh and bvh8, no mismatch.
+#[test]
+fn animate_runs_a_keyframed_scene_file() {
+    let (_out, dir) = temp_path("keys");
+    let stdout = accelbench_ok(&[
+        "animate",
+        "--scene",
+        "scenes/keyframes.toml",
+        "--frames",
+        "3",
+        "--indices",
+        "bvh,bvh8",
+        "--primary-size",
+        "32",
+        "--incoherent",
+        "1000",
+        "--repeats",
+        "1",
+        "--threads",
+        "1",
+        "--quiet",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let meta = std::fs::read_to_string(dir.join("meta.json")).unwrap();
+    let meta: serde_json::Value = serde_json::from_str(&meta).unwrap();
+    assert_eq!(
+        (&meta["motion"], &meta["status"]),
+        (&"keyframes".into(), &"complete".into())
+    );
+    let csv = std::fs::read_to_string(dir.join("frames.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(lines.len(), 12, "{csv}");
+    let rows = ["bvh+refit", "bvh+rebuild", "bvh8+refit", "bvh8+rebuild"];
+    for (i, row) in rows.iter().cycle().take(12).enumerate() {
+        let cells: Vec<&str> = lines[i].split(',').collect();
+        assert_eq!((cells[0], cells[1]), ((i / 4).to_string().as_str(), *row));
+        // Every ray verified (primary 32 x 32 and 1000 incoherent), none wrong.
+        assert_eq!(cells[9..], ["2024", "0"], "{}", lines[i]);
+    }
+    assert!(stdout.contains("keyframes"), "{stdout}");
 }
 
 /// SIGINT during the second frame: `animate` stops before the next frame, writes the frames it

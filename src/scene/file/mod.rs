@@ -7,6 +7,9 @@
 //! tables interleaved as written; a generator's spheres and shapes, e.g. from `spheres`, `mixed`
 //! or `shapes`, sit among the `[[sphere]]` and `[[shape]]` tables at the generator's place), and
 //! each object's primitives keep their own order.
+//!
+//! An object table with a `keyframes` key is remembered in [`Scene::keyframed`] with the id
+//! ranges it produced; its primitives here are its static placement ([`super::keyframes`]).
 
 pub mod mesh;
 pub mod placed;
@@ -14,6 +17,7 @@ pub mod schema;
 pub mod shape_schema;
 
 use super::generators::{DEFAULT_SEED, DEFAULT_SIZE, GeneratorSpec};
+use super::keyframes::{KeyframeError, KeyframedObject, Track};
 use super::{Material, Scene, SceneError};
 use crate::camera::Camera;
 use glam::Vec3A;
@@ -30,6 +34,28 @@ enum Object<'a> {
     Generator(&'a GeneratorEntry),
     Sphere(&'a SphereEntry),
     Shape(&'a ShapeEntry),
+}
+
+impl Object<'_> {
+    /// The table as messages name it: `[[mesh]] path = "tri.obj"`.
+    fn label(&self) -> String {
+        match self {
+            Object::Mesh(m) => format!("[[mesh]] path = \"{}\"", m.path),
+            Object::Generator(g) => format!("[[generator]] name = \"{}\"", g.name),
+            Object::Sphere(_) => "[[sphere]]".to_owned(),
+            Object::Shape(s) => format!("[[shape]] kind = \"{}\"", s.kind()),
+        }
+    }
+
+    /// Its `keyframes` key's track (`None` when absent).
+    fn track(&self) -> Result<Option<Track>, KeyframeError> {
+        match self {
+            Object::Mesh(m) => m.track(),
+            Object::Generator(g) => g.track(),
+            Object::Sphere(s) => placed::track(s.keyframes.as_deref(), None),
+            Object::Shape(s) => s.placed().track(),
+        }
+    }
 }
 
 /// The entries of one table as objects, each with its byte offset in the file.
@@ -83,12 +109,18 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
         ..Scene::default()
     };
     for (start, object) in &objects {
+        let what = object.label();
         let at = |what: &str, e: &dyn std::fmt::Display| {
             bad(format!("line {}, {what}: {e}", line(*start)))
         };
+        let track = object.track().map_err(|e| at(&what, &e))?;
+        let before = (
+            scene.triangles.len(),
+            scene.spheres.len(),
+            scene.shapes.len(),
+        );
         match object {
             Object::Mesh(m) => {
-                let what = format!("[[mesh]] path = \"{}\"", m.path);
                 let t = m.transform().map_err(|e| at(&what, &e))?;
                 let mesh = mesh::load_mesh(&dir.join(&m.path)).map_err(|e| at(&what, &e))?;
                 let material =
@@ -101,7 +133,6 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                     .extend(mesh.triangles.iter().map(|tri| t.triangle(tri)));
             }
             Object::Generator(g) => {
-                let what = format!("[[generator]] name = \"{}\"", g.name);
                 let t = g.transform().map_err(|e| at(&what, &e))?;
                 let spec = GeneratorSpec::new(
                     &g.name,
@@ -133,15 +164,15 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                     && s.radius > 0.0;
                 if !ok {
                     return Err(at(
-                        "[[sphere]]",
+                        &what,
                         &format!(
                             "center {:?} and radius {} are invalid: give a finite center and a finite radius > 0",
                             s.center, s.radius
                         ),
                     ));
                 }
-                let material = material(s.material.as_ref(), &file.materials)
-                    .map_err(|e| at("[[sphere]]", &e))?;
+                let material =
+                    material(s.material.as_ref(), &file.materials).map_err(|e| at(&what, &e))?;
                 scene.materials.start_spheres(scene.spheres.len(), material);
                 scene.spheres.push(crate::geometry::Sphere::new(
                     Vec3A::from(s.center),
@@ -149,7 +180,6 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 ));
             }
             Object::Shape(s) => {
-                let what = format!("[[shape]] kind = \"{}\"", s.kind());
                 let local = s.local_shape();
                 let local = local.map_err(|e| at(&what, &e))?;
                 let t = s.placed().transform().map_err(|e| at(&what, &e))?;
@@ -160,6 +190,15 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                     .shapes
                     .push(t.shape(&local).map_err(|e| at(&what, &e))?);
             }
+        }
+        if let Some(track) = track {
+            scene.keyframed.push(KeyframedObject {
+                entry: format!("line {}, {what}", line(*start)),
+                triangles: before.0..scene.triangles.len(),
+                spheres: before.1..scene.spheres.len(),
+                shapes: before.2..scene.shapes.len(),
+                track,
+            });
         }
     }
 

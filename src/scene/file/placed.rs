@@ -1,9 +1,11 @@
 //! The keys every object table of the scene format shares: `scale`, `rotate`, `translate` (the
-//! object's transform) and `material`. Object tables are declared with [`placed_entry!`], so
-//! the shared keys are written once and every table rejects unknown keys.
+//! object's transform), `material` and `keyframes`. Object tables are declared with
+//! [`placed_entry!`], so the shared keys are written once and every table rejects unknown keys.
 
 use crate::scene::Material;
+use crate::scene::keyframes::{Key, KeyframeError, Track};
 use crate::scene::transform::{Transform, TransformError};
+use glam::DVec3;
 use serde::Deserialize;
 
 /// `scale = s` (uniform) or `scale = [sx, sy, sz]`.
@@ -32,6 +34,34 @@ pub struct RotateSpec {
     pub degrees: f64,
 }
 
+/// One of `keyframes = [{ t = 0 }, { t = 1, translate = [x, y, z], rotate = { ... } }]`: the
+/// rigid pose at time `t` (`0..=1`), after the static placement; `translate` and `rotate`
+/// default to none.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeySpec {
+    pub t: f64,
+    pub translate: Option<[f64; 3]>,
+    pub rotate: Option<RotateSpec>,
+}
+
+/// The track of a `keyframes` key (`None` when absent), its rotations about `pivot` (the
+/// entry's `translate`, else the origin).
+pub fn track(
+    keyframes: Option<&[KeySpec]>,
+    pivot: Option<[f64; 3]>,
+) -> Result<Option<Track>, KeyframeError> {
+    let Some(keys) = keyframes else {
+        return Ok(None);
+    };
+    let keys = keys.iter().map(|k| {
+        let rotate = k.rotate.map(|r| (r.axis, r.degrees));
+        Key::new(k.t, rotate, k.translate.unwrap_or([0.0; 3]))
+    });
+    let pivot = DVec3::from(pivot.unwrap_or([0.0; 3]));
+    Track::new(keys.collect(), pivot).map(Some)
+}
+
 /// An object's `material`: the name of a `[material.NAME]` table, or an inline table.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(
@@ -49,6 +79,8 @@ pub trait Placed {
     fn transform(&self) -> Result<Transform, TransformError>;
     /// The `material` key.
     fn material_ref(&self) -> Option<&MaterialRef>;
+    /// The `keyframes` key's track (`None` when absent), turning about the `translate` key.
+    fn track(&self) -> Result<Option<Track>, KeyframeError>;
 }
 
 /// The transform of the `scale`, `rotate` and `translate` keys.
@@ -65,7 +97,8 @@ pub fn transform(
 }
 
 /// Declares an object table: its own keys as given, then the shared optional `scale`,
-/// `rotate`, `translate` and `material` keys; unknown keys rejected; implements [`Placed`].
+/// `rotate`, `translate`, `material` and `keyframes` keys; unknown keys rejected; implements
+/// [`Placed`].
 macro_rules! placed_entry {
     ($(#[$meta:meta])* $name:ident { $($(#[$fmeta:meta])* $field:ident: $ty:ty,)* }) => {
         $(#[$meta])*
@@ -77,6 +110,7 @@ macro_rules! placed_entry {
             pub rotate: Option<$crate::scene::file::placed::RotateSpec>,
             pub translate: Option<[f64; 3]>,
             pub material: Option<$crate::scene::file::placed::MaterialRef>,
+            pub keyframes: Option<Vec<$crate::scene::file::placed::KeySpec>>,
         }
 
         impl $crate::scene::file::placed::Placed for $name {
@@ -88,6 +122,14 @@ macro_rules! placed_entry {
             }
             fn material_ref(&self) -> Option<&$crate::scene::file::placed::MaterialRef> {
                 self.material.as_ref()
+            }
+            fn track(
+                &self,
+            ) -> Result<
+                Option<$crate::scene::keyframes::Track>,
+                $crate::scene::keyframes::KeyframeError,
+            > {
+                $crate::scene::file::placed::track(self.keyframes.as_deref(), self.translate)
             }
         }
     };

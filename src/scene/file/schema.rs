@@ -1,5 +1,13 @@
 //! The TOML scene format as serde types; unknown fields are rejected everywhere.
 //!
+//! `keyframes` (on `[[mesh]]`, `[[generator]]`, `[[sphere]]` and `[[shape]]`) gives an object
+//! rigid poses over the animation time `t` in `[0, 1]`, applied after its static placement: a
+//! key's `rotate` (default none) turns the placed object about its `translate` point (the
+//! origin without one), then its `translate` (default `[0, 0, 0]`) moves it. Between keys the
+//! move is linear and the turn a slerp (the shorter way round, so a turn of 180 degrees or more
+//! between two keys needs a key in between); before the first key and after the last the
+//! pose holds ([`crate::scene::keyframes`]). Other commands see the static placement.
+//!
 //! ```toml
 //! name = "example"                       # optional; default: the file's stem
 //!
@@ -18,6 +26,10 @@
 //! scale = 2                              # or [sx, sy, sz]; default 1
 //! rotate = { axis = [0, 1, 0], degrees = 30 }
 //! translate = [0, 0.1, 0]
+//! keyframes = [                          # optional, any object table: for `animate`
+//!   { t = 0 },                           # t in [0, 1], strictly increasing
+//!   { t = 1, translate = [2, 0, 0], rotate = { axis = [0, 1, 0], degrees = 90 } },
+//! ]                                      # or [[mesh.keyframes]] tables with the same keys
 //!
 //! [[generator]]                          # a built-in generator
 //! name = "terrain"
@@ -53,7 +65,7 @@
 //! radius = 0.2
 //! ```
 
-use super::placed::{MaterialRef, placed_entry};
+use super::placed::{KeySpec, MaterialRef, placed_entry};
 use super::shape_schema::ShapeEntry;
 use crate::scene::{AreaLight, CameraSpec, Material, PointLight};
 use serde::Deserialize;
@@ -121,4 +133,6 @@ pub struct SphereEntry {
     #[serde(deserialize_with = "f32_in_range")]
     pub radius: f32,
     pub material: Option<MaterialRef>,
+    /// Turning about the origin (a sphere has no `translate` key).
+    pub keyframes: Option<Vec<KeySpec>>,
 }

@@ -235,3 +235,145 @@ fn bad_materials_and_area_lights_name_what_to_fix() {
         assert!(msg.contains(expect), "expected '{expect}' in: {msg}");
     }
 }
+
+#[test]
+fn keyframed_entries_remember_their_primitives_and_move_by_their_keys() {
+    use crate::scene::motion::MotionSpec;
+    let s = load(
+        r#"
+[[generator]]
+name = "mixed"
+n = 60
+translate = [0, 0, 5]
+keyframes = [
+  { t = 0 },
+  { t = 0.5, translate = [2, 0, 0], rotate = { axis = [0, 1, 0], degrees = 90 } },
+]
+[[mesh]]
+path = "tri.obj"
+[[mesh]]
+path = "tri.obj"
+[[mesh.keyframes]]
+t = 0.25
+translate = [0, 1, 0]
+[[mesh.keyframes]]
+t = 1
+translate = [0, 3, 0]
+[[sphere]]
+center = [1, 0, 0]
+radius = 0.5
+keyframes = [{ t = 0, rotate = { axis = [0, 0, 1], degrees = 90 } }]
+"#,
+    )
+    .unwrap();
+    let mixed = generate("mixed", 60, 1).unwrap();
+    let (nt, ns) = (mixed.triangles.len(), mixed.spheres.len());
+    let k = &s.keyframed;
+    assert_eq!(k.len(), 3);
+    assert_eq!(k[0].entry, "line 2, [[generator]] name = \"mixed\"");
+    assert_eq!(
+        (k[0].triangles.clone(), k[0].spheres.clone()),
+        (0..nt, 0..ns)
+    );
+    assert!(
+        k[1].entry.ends_with("[[mesh]] path = \"tri.obj\""),
+        "{}",
+        k[1].entry
+    );
+    assert_eq!(
+        (k[1].triangles.clone(), k[1].spheres.clone()),
+        (nt + 1..nt + 2, ns..ns)
+    );
+    assert_eq!(
+        (k[2].triangles.clone(), k[2].spheres.clone()),
+        (nt + 2..nt + 2, ns..ns + 1)
+    );
+    assert_eq!(k[1].track.keys().len(), 2);
+
+    let frame = |t: f32| MotionSpec::Keyframes.frame(&s, t).unwrap();
+    let near = |a: Vec3A, b: Vec3A| (a - b).abs().max_element() < 1e-5;
+    // t = 0: the generator's first key is the identity, so it is the static scene, bit for
+    // bit; the mesh holds its first key (t = 0.25) and the sphere its only one.
+    let start = frame(0.0);
+    assert_eq!(start.triangles[..=nt], s.triangles[..=nt]);
+    assert_eq!(start.spheres[..ns], s.spheres[..ns]);
+    let moved = |t: &crate::geometry::Triangle, dy: f32| t.v.map(|v| v + Vec3A::Y * dy);
+    assert_eq!(start.triangles[nt + 1].v, moved(&s.triangles[nt + 1], 1.0));
+    assert!(
+        near(start.spheres[ns].center, Vec3A::Y),
+        "turned about the origin"
+    );
+    // At the generator's last key: its pose exactly, a quarter turn about its own placement
+    // (0, 0, 5), (x, y, z) -> (z, y, -x) about it, then (2, 0, 0) further.
+    let key = frame(0.5);
+    let pose = k[0].track.at(0.5);
+    assert_eq!(key.triangles[3], pose.triangle(&s.triangles[3]));
+    let q = mixed.triangles[3].v[0];
+    assert!(near(
+        key.triangles[3].v[0],
+        Vec3A::new(q.z + 2.0, q.y, 5.0 - q.x)
+    ));
+    // Half way to it: half the turn (45 degrees) and half the move; the mesh between its keys.
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let mid = frame(0.25).triangles[3].v[0];
+    let turned = Vec3A::new(h * (q.x + q.z) + 1.0, q.y, h * (q.z - q.x) + 5.0);
+    assert!(near(mid, turned), "{mid} {turned}");
+    assert_eq!(
+        frame(0.25).triangles[nt + 1].v,
+        moved(&s.triangles[nt + 1], 1.0)
+    );
+    let between = frame(0.625).triangles[nt + 1].v;
+    assert!(near(between[1], s.triangles[nt + 1].v[1] + Vec3A::Y * 2.0));
+}
+
+#[test]
+fn bad_keyframes_name_the_file_the_entry_and_the_key() {
+    let mesh = "[[mesh]]\npath = \"tri.obj\"\n";
+    let entry = "line 1, [[mesh]] path = \"tri.obj\": ";
+    for (keys, expect) in [
+        ("[]", "keyframes = [] has no key"),
+        ("[{ t = 1.5 }]", "keyframe 1 of 1: t = 1.5 is invalid"),
+        ("[{ t = -0.01 }]", "keyframe 1 of 1: t = -0.01 is invalid"),
+        ("[{ t = nan }]", "keyframe 1 of 1: t = NaN is invalid"),
+        (
+            "[{ t = 0.5 }, { t = 0.5 }]",
+            "keyframe 2 of 2: t = 0.5 is not after the previous key's t = 0.5",
+        ),
+        ("[{ t = 0.5 }, { t = 0.2 }, { t = 1 }]", "keyframe 2 of 3"),
+        (
+            "[{ t = 0, rotate = { axis = [0, 0, 0], degrees = 10 } }]",
+            "keyframe 1 of 1: rotation axis [0.0, 0.0, 0.0] is invalid",
+        ),
+        (
+            "[{ t = 0, translate = [nan, 0, 0] }]",
+            "keyframe 1 of 1: translate [NaN, 0.0, 0.0] is invalid",
+        ),
+        (
+            "[{ t = 0, rotate = { axis = [0, 1, 0], degrees = inf } }]",
+            "keyframe 1 of 1: rotation angle inf degrees",
+        ),
+    ] {
+        let msg = error(&format!("{mesh}keyframes = {keys}\n"));
+        assert!(msg.contains(&format!("{entry}{expect}")), "{keys}: {msg}");
+    }
+    for (keys, expect) in [
+        ("[{ t = 0, scale = 2 }]", "unknown field `scale`"),
+        ("[{ translate = [1, 0, 0] }]", "missing field `t`"),
+    ] {
+        let msg = error(&format!("{mesh}keyframes = {keys}\n"));
+        assert!(msg.contains(expect), "{keys}: {msg}");
+    }
+    let sphere = error("[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nkeyframes = [{ t = 2 }]\n");
+    assert!(
+        sphere.contains("line 1, [[sphere]]: keyframe 1 of 1: t = 2"),
+        "{sphere}"
+    );
+    let shape = error(
+        "[[shape]]\nkind = \"box\"\ncenter = [0, 0, 0]\nhalf_extents = [1, 1, 1]\n\
+         keyframes = [{ t = 0.5 }, { t = 0.1 }]\n",
+    );
+    assert!(
+        shape.contains("[[shape]] kind = \"box\": keyframe 2 of 2"),
+        "{shape}"
+    );
+}

@@ -6,17 +6,22 @@
 //!   with height and with time ([`twist`]).
 //! - `wave`: a travelling wave lifts and lowers the scene vertically ([`wave`]).
 //! - `cloth`: the scene falls like a sheet and drapes over a ball ([`cloth`]).
+//! - `keyframes`: the scene file's keyframed entries move rigidly, each by its own keys
+//!   ([`keyframed_geometry`]).
 //!
 //! A motion is a pure function of the rest pose and the time `t` in `[0, 1]` (first to last
-//! frame): the same spec and frame give the same primitives, bit for bit. Triangle corners and
-//! sphere centres move; spheres keep their radius, and the other shapes (boxes, polygons, ...)
-//! stay where they are.
+//! frame): the same spec and frame give the same primitives, bit for bit. Under the three
+//! deformations triangle corners and sphere centres move, spheres keep their radius, and the
+//! other shapes (boxes, polygons, ...) stay where they are; under `keyframes` a keyframed
+//! entry's shapes turn and move with it.
 
 pub mod cloth;
+mod keyframed;
 mod spec;
 pub mod twist;
 pub mod wave;
 
+pub use keyframed::keyframed_geometry;
 pub use spec::MotionSpec;
 
 use super::{Scene, SceneGeometry};

@@ -1,9 +1,12 @@
-//! Motion specs on the command line: `twist`, `twist:turns=0.5`, `wave:amplitude=0.02,waves=2`.
+//! Motion specs on the command line: `twist`, `twist:turns=0.5`, `wave:amplitude=0.02,waves=2`,
+//! `keyframes` (a scene file's own keys).
 
-use super::Motion;
 use super::cloth::Cloth;
+use super::keyframed::keyframed_geometry;
 use super::twist::Twist;
 use super::wave::Wave;
+use super::{Motion, frame_geometry};
+use crate::scene::{Scene, SceneGeometry};
 use std::fmt;
 use std::str::FromStr;
 
@@ -13,19 +16,43 @@ pub enum MotionSpec {
     Twist(Twist),
     Wave(Wave),
     Cloth(Cloth),
+    /// The scene's keyframed entries ([`Scene::keyframed`]) move by their keys.
+    Keyframes,
 }
 
-/// The motions, with their parameters and defaults, for messages.
-const KNOWN: &str = "twist[:turns=0.25], wave[:amplitude=0.02,waves=2], cloth[:drop=0.5,ball=0.3]";
+/// The deformations, with their parameters and defaults, for messages (`keyframes` besides).
+const DEFORMATIONS: &str =
+    "twist[:turns=0.25], wave[:amplitude=0.02,waves=2], cloth[:drop=0.5,ball=0.3]";
 
 impl MotionSpec {
-    /// The motion itself.
-    pub fn motion(&self) -> &dyn Motion {
-        match self {
+    /// The motion `animate` uses on `scene` when `asked` for one (`None`: not asked):
+    /// `keyframes` by default when the scene has keyframes, else `twist`; an error when
+    /// `keyframes` is asked of a scene without any.
+    pub fn for_scene(asked: Option<MotionSpec>, scene: &Scene) -> Result<MotionSpec, String> {
+        let keyed = !scene.keyframed.is_empty();
+        match asked {
+            Some(MotionSpec::Keyframes) if !keyed => Err(format!(
+                "--motion keyframes: scene '{}' has no keyframes; give a scene file whose \
+                 [[mesh]], [[generator]], [[sphere]] or [[shape]] tables have a keyframes key, \
+                 or choose one of {DEFORMATIONS}",
+                scene.name
+            )),
+            Some(spec) => Ok(spec),
+            None if keyed => Ok(MotionSpec::Keyframes),
+            None => "twist".parse(),
+        }
+    }
+
+    /// The primitives of `scene` at time `t` (`0..=1`) under this motion; an error only where
+    /// a keyframed shape cannot be placed ([`keyframed_geometry`]).
+    pub fn frame(&self, scene: &Scene, t: f32) -> Result<SceneGeometry, String> {
+        let motion: &dyn Motion = match self {
             MotionSpec::Twist(m) => m,
             MotionSpec::Wave(m) => m,
             MotionSpec::Cloth(m) => m,
-        }
+            MotionSpec::Keyframes => return keyframed_geometry(scene, t),
+        };
+        Ok(frame_geometry(scene, motion, t))
     }
 }
 
@@ -35,6 +62,7 @@ impl fmt::Display for MotionSpec {
             MotionSpec::Twist(m) => write!(f, "twist:turns={}", m.turns),
             MotionSpec::Wave(m) => write!(f, "wave:amplitude={},waves={}", m.amplitude, m.waves),
             MotionSpec::Cloth(m) => write!(f, "cloth:drop={},ball={}", m.drop, m.ball),
+            MotionSpec::Keyframes => write!(f, "keyframes"),
         }
     }
 }
@@ -50,7 +78,12 @@ impl FromStr for MotionSpec {
             "twist" => (&["turns"], &[(-16.0, 16.0)]),
             "wave" => (&["amplitude", "waves"], &[(0.0, 1.0), (0.0, 64.0)]),
             "cloth" => (&["drop", "ball"], &[(0.0, 4.0), (0.0, 1.0)]),
-            other => return Err(format!("unknown motion '{other}': choose one of {KNOWN}")),
+            "keyframes" => (&[], &[]),
+            other => {
+                return Err(format!(
+                    "unknown motion '{other}': choose one of {DEFORMATIONS}, keyframes"
+                ));
+            }
         };
         let mut values: Vec<Option<f32>> = vec![None; keys.len()];
         for item in rest.split(',').map(str::trim).filter(|i| !i.is_empty()) {
@@ -59,10 +92,11 @@ impl FromStr for MotionSpec {
                 .ok_or_else(|| format!("'{item}' in motion '{s}' is not key=value"))?;
             let k = k.trim();
             let at = keys.iter().position(|&key| key == k).ok_or_else(|| {
-                format!(
-                    "motion '{name}' has no parameter '{k}': it takes {}",
-                    keys.join(", ")
-                )
+                let takes = match keys.is_empty() {
+                    true => "none".to_owned(),
+                    false => keys.join(", "),
+                };
+                format!("motion '{name}' has no parameter '{k}': it takes {takes}")
             })?;
             if values[at].is_some() {
                 return Err(format!(
@@ -91,10 +125,11 @@ impl FromStr for MotionSpec {
                 amplitude: values[0].unwrap_or(0.02),
                 waves: values[1].unwrap_or(2.0),
             }),
-            _ => MotionSpec::Cloth(Cloth {
+            "cloth" => MotionSpec::Cloth(Cloth {
                 drop: values[0].unwrap_or(0.5),
                 ball: values[1].unwrap_or(0.3),
             }),
+            _ => MotionSpec::Keyframes,
         })
     }
 }
@@ -118,6 +153,7 @@ mod tests {
             ("twist", twist),
             ("wave:waves=3, amplitude=0.1", wave),
             ("cloth:ball=0.25", cloth),
+            ("keyframes", MotionSpec::Keyframes),
         ] {
             let parsed: MotionSpec = text.parse().unwrap();
             assert_eq!(parsed, spec, "{text}");
@@ -131,9 +167,40 @@ mod tests {
             ("twist:turns=nan", "use a number from"),
             ("wave:amplitude=2", "use a number from 0 to 1"),
             ("cloth:drop=5", "use a number from 0 to 4"),
+            (
+                "keyframes:speed=2",
+                "has no parameter 'speed': it takes none",
+            ),
         ] {
             let e = bad.parse::<MotionSpec>().unwrap_err();
             assert!(e.contains(says), "{bad}: {e}");
         }
+    }
+
+    #[test]
+    fn keyframes_are_the_default_for_a_scene_with_keys_and_refused_without() {
+        use crate::scene::keyframes::{Key, KeyframedObject, Track};
+        let plain = Scene {
+            name: "plain".into(),
+            ..Scene::default()
+        };
+        let twist = MotionSpec::Twist(Twist { turns: 0.25 });
+        assert_eq!(MotionSpec::for_scene(None, &plain), Ok(twist));
+        let e = MotionSpec::for_scene(Some(MotionSpec::Keyframes), &plain).unwrap_err();
+        assert!(e.contains("scene 'plain' has no keyframes"), "{e}");
+        let track = Track::new(vec![Key::new(0.0, None, [0.0; 3])], glam::DVec3::ZERO).unwrap();
+        let keyed = Scene {
+            keyframed: vec![KeyframedObject {
+                entry: String::new(),
+                triangles: 0..0,
+                spheres: 0..0,
+                shapes: 0..0,
+                track,
+            }],
+            ..Scene::default()
+        };
+        let keys = MotionSpec::Keyframes;
+        assert_eq!(MotionSpec::for_scene(None, &keyed), Ok(keys));
+        assert_eq!(MotionSpec::for_scene(Some(twist), &keyed), Ok(twist));
     }
 }
