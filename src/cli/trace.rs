@@ -68,6 +68,14 @@ pub fn run(a: TraceArgs) -> anyhow::Result<()> {
     // The pool and the batch (the index's own ray form, where it has one) are made before the
     // clock starts.
     let width = a.image_width.map(|w| w as usize);
+    if let Some(w) = width.filter(|&w| w > rays.len()) {
+        anyhow::bail!(
+            "--image-width {w} is wider than the {} rays of {}: give the image's width in rays \
+             (1024 for the protocol's primary set), at most the number of rays",
+            rays.len(),
+            a.rays.display()
+        );
+    }
     let batch = TimedBatch::new(index.as_ref(), a.mode, &rays, width);
     let mut out = PassOutput::new(Query::Closest, rays.len());
     let mut times = with_threads(threads, || {

@@ -25,6 +25,30 @@ fn trace_refuses_to_write_its_hits_over_its_rays() {
     assert_eq!(std::fs::read(&rays).unwrap(), before);
 }
 
+/// An image width beyond the batch (up to `u64::MAX`) is refused with a message, never a panic
+/// or an overflow in the tiling; a width that fits traces in packets from tiles.
+#[test]
+fn trace_refuses_an_image_wider_than_its_rays() {
+    let (_dir, rays) = primary_rays();
+    let (r, scene) = (rays.to_str().unwrap(), SCENE);
+    for w in ["18446744073709551615", "100000000"] {
+        let args = ["trace", "--scene", scene, "--rays", r, "--image-width", w];
+        accelbench_fails(&args, &["--image-width", "wider than the", "rays of"]);
+    }
+    let args = [
+        "trace",
+        "--scene",
+        scene,
+        "--rays",
+        r,
+        "--mode",
+        "packets16",
+        "--image-width",
+        "7",
+    ];
+    accelbench_ok(&args);
+}
+
 #[test]
 fn unknown_obj_statements_are_warned_about_once_each_with_their_line() {
     let (_dir, obj) = temp_path("typo.obj");

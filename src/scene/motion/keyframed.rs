@@ -10,9 +10,9 @@ use std::sync::Arc;
 /// The primitives of `scene` at time `t` (in `[0, 1]`) under its keyframes: triangle corners,
 /// sphere centres and shapes of each keyframed entry placed by its pose, each coordinate
 /// rounded to `f32` once from the static placement (an identity pose keeps every bit). The
-/// same scene and `t` give the same primitives, bit for bit. An error (naming the entry) only
-/// where a moved shape would be invalid, which a rigid motion of a valid shape does not cause
-/// beyond rounding.
+/// same scene and `t` give the same primitives, bit for bit. An error (naming the entry) where
+/// a moved shape would be invalid, which a rigid motion of a valid shape does not cause beyond
+/// rounding, or where a key's translation carries a coordinate beyond `f32`'s range.
 pub fn keyframed_geometry(scene: &Scene, t: f32) -> Result<SceneGeometry, String> {
     let mut triangles = scene.triangles.clone();
     let mut spheres = scene.spheres.clone();
@@ -23,11 +23,20 @@ pub fn keyframed_geometry(scene: &Scene, t: f32) -> Result<SceneGeometry, String
             continue;
         }
         let bad = |e: &dyn std::fmt::Display| format!("{} at t = {t}: {e}", object.entry);
-        triangles[object.triangles.clone()]
+        let moved = &mut triangles[object.triangles.clone()];
+        moved
             .par_iter_mut()
             .for_each(|tri| *tri = pose.triangle(tri));
+        let beyond_f32 = "a moved coordinate is beyond f32's range: keep the keys' translations \
+                          (and the object) within about ±3.4e38";
+        if !moved.iter().all(|tri| tri.v.iter().all(|v| v.is_finite())) {
+            return Err(bad(&beyond_f32));
+        }
         for s in &mut spheres[object.spheres.clone()] {
             *s = pose.sphere(s).map_err(|e| bad(&e))?;
+            if !s.center.is_finite() {
+                return Err(bad(&beyond_f32));
+            }
         }
         for s in &mut shapes[object.shapes.clone()] {
             *s = pose.shape(s).map_err(|e| bad(&e))?;
@@ -100,6 +109,24 @@ mod tests {
             panic!("a box stays a box")
         };
         assert!((b.center() - Vec3A::new(1.0, 1.0, 4.0)).length() < 1e-6);
+    }
+
+    /// A key that moves the object beyond `f32`'s range is an error naming the entry and the
+    /// time, not infinite coordinates handed to the indices.
+    #[test]
+    fn a_key_beyond_f32_range_is_an_error() {
+        let mut s = scene();
+        let keys = vec![
+            Key::new(0.0, None, [0.0; 3]),
+            Key::new(1.0, None, [1e300, 0.0, 0.0]),
+        ];
+        s.keyframed[0].track = Track::new(keys, DVec3::X).unwrap();
+        assert!(keyframed_geometry(&s, 0.0).is_ok());
+        let e = keyframed_geometry(&s, 1.0).unwrap_err();
+        assert!(
+            e.contains("test at t = 1") && e.contains("beyond f32's range"),
+            "{e}"
+        );
     }
 
     #[test]
