@@ -7,7 +7,8 @@
 //!
 //! The folder by kind: the trait and its types here (`contract`, `hit_query` (the query
 //! kinds every walk is generic over), `build_error`, `index_info`, `stats`, and `build_budget`, the memory budget builds are held to); the tracing machinery in [`trace`]; the kits the structures share in [`kit`]; one
-//! folder per structure (`brute`, `bvh`, `wbvh`, `grid`, `grid2`, `octree`, `kdtree`, `bsp`);
+//! folder per structure (`brute`, `bvh`, `wbvh`, `grid`, `grid2`, `octree`, `kdtree`, `bsp`, and
+//! [`tlas`], the two-level structure over a scene's instances);
 //! the outside libraries in [`peers`]; the GPU backend in `gpu` (feature `gpu`); the list of
 //! them all in [`registry`].
 
@@ -29,6 +30,7 @@ pub mod octree;
 pub mod peers;
 pub mod registry;
 mod stats;
+pub mod tlas;
 pub mod trace;
 pub mod wbvh;
 

@@ -34,6 +34,9 @@ pub struct SceneGeometry {
     pub triangles: Arc<[Triangle]>,
     pub spheres: Arc<[Sphere]>,
     pub shapes: Arc<[Shape]>,
+    /// The scene's instances when it has `[[instance]]` entries (for `tlas`; every other index
+    /// traces the flattened primitives above).
+    pub instances: Option<Arc<super::instances::InstanceSet>>,
 }
 
 impl SceneGeometry {

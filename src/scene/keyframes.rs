@@ -51,6 +51,11 @@ pub enum KeyframeError {
         count: usize,
         problem: KeyProblem,
     },
+    #[error(
+        "keyframes on [[instance]] are not supported: instances stay where they are placed; \
+         use a [[mesh]] or [[generator]] table for an object that moves"
+    )]
+    NotOnInstances,
 }
 
 impl Key {

@@ -10,6 +10,7 @@ pub mod generators;
 mod geometry;
 mod geometry_traits;
 pub mod gltf;
+pub mod instances;
 pub mod keyframes;
 mod load;
 mod mapped;
@@ -100,6 +101,9 @@ pub struct Scene {
     /// (disjoint ranges). The primitives above are the static placement, the keyframes not
     /// applied; `animate` applies them ([`motion::keyframed_geometry`]).
     pub keyframed: Vec<keyframes::KeyframedObject>,
+    /// The meshes and placements of a scene file with `[[instance]]` entries (`None`
+    /// otherwise); the primitives above are then the flattened scene.
+    pub instances: Option<Arc<instances::InstanceSet>>,
 }
 
 impl Scene {
@@ -187,6 +191,7 @@ impl Scene {
             triangles: Arc::from(self.triangles.as_slice()),
             spheres: Arc::from(self.spheres.as_slice()),
             shapes: Arc::from(self.shapes.as_slice()),
+            instances: self.instances.clone(),
         }
     }
 

@@ -19,6 +19,7 @@ mod fuzz;
 mod gpu;
 mod grid;
 mod grid2;
+mod instances;
 mod kdtree;
 mod last_hit;
 mod layout;

@@ -23,6 +23,12 @@ pub enum Kind {
     /// A GPU shader over one of our structures (`index::gpu`): its own `f32` triangle test, so
     /// it is checked like a peer (classified, never failed).
     Gpu,
+    /// Ours over an instanced scene (`tlas`): bound by the hit contract of instancing (brute
+    /// force over the instances, rays moved into object space; [`crate::index::tlas`]), which
+    /// rounds differently from the flattened world-space triangles every other index traces,
+    /// so a run classifies it against them as it does peers. Built only when asked for
+    /// (not in [`index_names`]).
+    Instanced,
 }
 
 struct Entry {
@@ -82,15 +88,27 @@ const REGISTRY: &[Entry] = &[
     gpu_entry::<crate::index::gpu::Bvh2>("gpu-bvh2"),
     #[cfg(feature = "gpu")]
     gpu_entry::<crate::index::gpu::GridCells>("gpu-grid"),
+    Entry {
+        name: "tlas",
+        build: crate::index::tlas::build,
+        estimate: crate::index::tlas::estimate,
+        kind: Kind::Instanced,
+    },
 ];
 
-/// Names of all registered indices, in report order.
+/// Names of the indices a run builds when none are named, in report order: every registered
+/// one but `tlas` ([`Kind::Instanced`]), which traces only scenes with instances and is built
+/// when asked for.
 pub fn index_names() -> Vec<&'static str> {
-    REGISTRY.iter().map(|e| e.name).collect()
+    (REGISTRY.iter())
+        .filter(|e| e.kind != Kind::Instanced)
+        .map(|e| e.name)
+        .collect()
 }
 
-/// Whether `name` is a registered peer or GPU index ([`Kind::Peer`], [`Kind::Gpu`]): its
-/// mismatches are classified and reported, not failed. The one place that answers this.
+/// Whether `name` is a registered peer, GPU or instanced index ([`Kind::Peer`], [`Kind::Gpu`],
+/// [`Kind::Instanced`]): its mismatches with brute force on the flattened scene are classified
+/// and reported, not failed. The one place that answers this.
 pub fn is_peer(name: &str) -> bool {
     REGISTRY
         .iter()
@@ -106,7 +124,7 @@ pub fn kind_of(name: &str) -> Option<Kind> {
 pub fn peer_names() -> Vec<&'static str> {
     REGISTRY
         .iter()
-        .filter(|e| e.kind != Kind::Ours)
+        .filter(|e| matches!(e.kind, Kind::Peer | Kind::Gpu))
         .map(|e| e.name)
         .collect()
 }
@@ -128,7 +146,8 @@ impl FromStr for IndexSpec {
 }
 
 fn unknown(name: &str) -> BuildError {
-    BuildError::UnknownIndex(name.to_owned(), index_names().join(", "))
+    let all: Vec<&str> = REGISTRY.iter().map(|e| e.name).collect();
+    BuildError::UnknownIndex(name.to_owned(), all.join(", "))
 }
 
 fn find_entry(name: &str) -> Result<&'static Entry, BuildError> {

@@ -11,6 +11,7 @@
 //! An object table with a `keyframes` key is remembered in [`Scene::keyframed`] with the id
 //! ranges it produced; its primitives here are its static placement ([`super::keyframes`]).
 
+pub mod instance;
 pub mod mesh;
 pub mod placed;
 pub mod schema;
@@ -22,7 +23,7 @@ use super::{Material, Scene, SceneError};
 use crate::camera::Camera;
 use glam::Vec3A;
 use placed::{MaterialRef, Placed};
-use schema::{GeneratorEntry, MeshEntry, SceneFile, SphereEntry};
+use schema::{GeneratorEntry, InstanceEntry, MeshEntry, SceneFile, SphereEntry};
 use shape_schema::ShapeEntry;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -34,6 +35,7 @@ enum Object<'a> {
     Generator(&'a GeneratorEntry),
     Sphere(&'a SphereEntry),
     Shape(&'a ShapeEntry),
+    Instance(&'a InstanceEntry),
 }
 
 impl Object<'_> {
@@ -44,6 +46,11 @@ impl Object<'_> {
             Object::Generator(g) => format!("[[generator]] name = \"{}\"", g.name),
             Object::Sphere(_) => "[[sphere]]".to_owned(),
             Object::Shape(s) => format!("[[shape]] kind = \"{}\"", s.kind()),
+            Object::Instance(i) => match (&i.path, &i.object) {
+                (Some(p), _) => format!("[[instance]] path = \"{p}\""),
+                (None, Some(o)) => format!("[[instance]] object = \"{o}\""),
+                (None, None) => "[[instance]]".to_owned(),
+            },
         }
     }
 
@@ -54,6 +61,10 @@ impl Object<'_> {
             Object::Generator(g) => g.track(),
             Object::Sphere(s) => placed::track(s.keyframes.as_deref(), None),
             Object::Shape(s) => s.placed().track(),
+            Object::Instance(i) => match i.keyframes {
+                None => Ok(None),
+                Some(_) => Err(KeyframeError::NotOnInstances),
+            },
         }
     }
 }
@@ -86,10 +97,11 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
     objects.extend(at_offsets(&file.generators, Object::Generator));
     objects.extend(at_offsets(&file.spheres, Object::Sphere));
     objects.extend(at_offsets(&file.shapes, Object::Shape));
+    objects.extend(at_offsets(&file.instances, Object::Instance));
     objects.sort_by_key(|(start, _)| *start);
     if objects.is_empty() {
         return Err(bad(
-            "the scene is empty: add at least one [[mesh]], [[generator]], [[sphere]] or [[shape]]"
+            "the scene is empty: add at least one [[mesh]], [[generator]], [[instance]], [[sphere]] or [[shape]]"
                 .into(),
         ));
     }
@@ -108,6 +120,8 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
         name,
         ..Scene::default()
     };
+    // Only a file with [[instance]] entries keeps its objects as instances.
+    let mut instancing = (!file.instances.is_empty()).then(instance::Instancing::default);
     for (start, object) in &objects {
         let what = object.label();
         let at = |what: &str, e: &dyn std::fmt::Display| {
@@ -131,6 +145,24 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                 scene
                     .triangles
                     .extend(mesh.triangles.iter().map(|tri| t.triangle(tri)));
+            }
+            Object::Instance(i) => {
+                let t = i.transform().map_err(|e| at(&what, &e))?;
+                let instancing = instancing.as_mut().expect("a file with instances");
+                let (mesh, tris) = instancing
+                    .mesh_of(i, &file.objects, dir)
+                    .map_err(|e| at(&what, &e))?;
+                instancing
+                    .place(mesh, &tris, &t, scene.triangles.len())
+                    .map_err(|e| at(&what, &e))?;
+                let material =
+                    material(i.material_ref(), &file.materials).map_err(|e| at(&what, &e))?;
+                scene
+                    .materials
+                    .start_triangles(scene.triangles.len(), material);
+                scene
+                    .triangles
+                    .extend(tris.iter().map(|tri| t.triangle(tri)));
             }
             Object::Generator(g) => {
                 let t = g.transform().map_err(|e| at(&what, &e))?;
@@ -191,6 +223,11 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
                     .push(t.shape(&local).map_err(|e| at(&what, &e))?);
             }
         }
+        if let (Some(instancing), Object::Mesh(_) | Object::Generator(_)) =
+            (&mut instancing, object)
+        {
+            instancing.own(&scene.triangles[before.0..], before.0);
+        }
         if let Some(track) = track {
             scene.keyframed.push(KeyframedObject {
                 entry: format!("line {}, {what}", line(*start)),
@@ -228,6 +265,15 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
     for (i, l) in file.area_lights.iter().enumerate() {
         l.validate()
             .map_err(|e| bad(format!("[[area_light]] {}: {e}", i + 1)))?;
+    }
+    if let Some(instancing) = instancing {
+        let covers = scene.spheres.is_empty() && scene.shapes.is_empty();
+        scene.instances = Some(std::sync::Arc::new(instancing.finish(covers)));
+    } else if !file.objects.is_empty() {
+        return Err(bad(format!(
+            "[object.{}] is defined but no [[instance]] places it: add an [[instance]] with              object = \"{0}\", or remove the table",
+            file.objects.keys().next().expect("not empty")
+        )));
     }
     scene.area_lights = file.area_lights;
     scene.camera = file.camera;

@@ -58,6 +58,15 @@
 //! intensity = [1, 1, 1]                  # default white; the total over the rectangle
 //! samples = 4                            # strata per edge (4 x 4 shadow rays); default 4
 //!
+//! [object.tree]                          # a mesh that instances place by name
+//! generator = "icosphere"                # or path = "tree.ply"
+//! n = 800                                # generator size; default 20000
+//!
+//! [[instance]]                           # places a mesh: `path` or `object`, same transform
+//! object = "tree"                        #   and material keys as [[mesh]]; instances of one
+//! translate = [2, 0, 0]                  #   mesh share its structure in the `tlas` index
+//! scale = 0.5
+//!
 //! [[shape]]                              # box, polygons, cylinder, cone, ellipsoid
 //! kind = "cylinder"                      # keys per kind: see shape_schema
 //! base = [0, 0, 0]
@@ -94,6 +103,11 @@ pub struct SceneFile {
     pub area_lights: Vec<AreaLight>,
     #[serde(default, rename = "shape")]
     pub shapes: Vec<Spanned<ShapeEntry>>,
+    #[serde(default, rename = "instance")]
+    pub instances: Vec<Spanned<InstanceEntry>>,
+    /// `[object.NAME]` tables.
+    #[serde(default, rename = "object")]
+    pub objects: BTreeMap<String, ObjectDef>,
 }
 
 placed_entry! {
@@ -111,6 +125,26 @@ placed_entry! {
         n: Option<i64>,
         seed: Option<u64>,
     }
+}
+
+placed_entry! {
+    /// `[[instance]]`: a mesh file (`path`) or a named `[object.NAME]` (`object`), placed by a
+    /// transform; every instance of one mesh shares its structure in `tlas`. No `keyframes`.
+    InstanceEntry {
+        path: Option<String>,
+        object: Option<String>,
+    }
+}
+
+/// `[object.NAME]`: a mesh `[[instance]]` entries name: a mesh file (`path`) or a built-in
+/// triangle generator (`generator`, `n`, `seed`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectDef {
+    pub path: Option<String>,
+    pub generator: Option<String>,
+    pub n: Option<i64>,
+    pub seed: Option<u64>,
 }
 
 /// An `f32` field read from the file's number, refused (with the file's line, by toml) when

@@ -46,6 +46,8 @@ pub fn keyframed_geometry(scene: &Scene, t: f32) -> Result<SceneGeometry, String
         triangles: Arc::from(triangles),
         spheres: Arc::from(spheres),
         shapes: Arc::from(shapes),
+        // A moved frame is not the placements' scene any more: traced flattened.
+        instances: None,
     })
 }
 

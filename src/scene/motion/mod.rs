@@ -58,6 +58,8 @@ pub fn frame_geometry(scene: &Scene, motion: &dyn Motion, t: f32) -> SceneGeomet
         triangles: Arc::from(triangles),
         spheres: Arc::from(spheres),
         shapes: Arc::from(scene.shapes.as_slice()),
+        // A moved frame is not the placements' scene any more: traced flattened.
+        instances: None,
     }
 }
 
