@@ -6,7 +6,9 @@
 //!   with the SAH split finders in `binned` and `sweep`, and the spatial splits (SBVH, an
 //!   option) in `spatial`; `traverse`: the node step; `packet`: the node's side of the packet
 //!   walk. The node layout, the slab tests, the traversal loops, the leaves and the packet walk
-//!   are the box-tree kit's ([`crate::index::kit::box_tree`]), shared with the wide BVH.
+//!   are the box-tree kit's ([`crate::index::kit::box_tree`]), shared with the wide BVH, and so
+//!   are the node orders of the `layout` parameter ([`layout`]: the finished node array
+//!   reordered in memory, depth first, van Emde Boas or treelets).
 //! - The BVH holds its nodes and the primitive ids in leaf order. The scene's primitives are not
 //!   reordered (their ids are the hit contract), so a leaf reads a contiguous run of ids. With
 //!   spatial splits an id may occur in several leaves; the hits stay exact (see `spatial`).
@@ -27,7 +29,7 @@ pub use params::{BvhParams, Preset, SplitMethod};
 
 use crate::geometry::{Aabb, Ray};
 use crate::index::kit::box_tree::node::{Child, Node};
-use crate::index::kit::box_tree::{leaves, tree, walk};
+use crate::index::kit::box_tree::{layout, leaves, tree, walk};
 use crate::index::kit::huge_pages::huge_page_vec;
 use crate::index::{BatchIndex, BuildError, HitQuery, Index, IndexInfo, Stats};
 use crate::scene::Geometry;
@@ -57,6 +59,7 @@ impl Index for Bvh {
 
     fn build<G: Geometry>(geom: &G, params: &BvhParams) -> Result<Self, BuildError> {
         let mut bvh = Bvh::build_tree(geom, params, 1)?;
+        layout::apply(params.layout, &mut bvh.root, &mut bvh.nodes);
         bvh.nodes = huge_page_vec(bvh.nodes);
         bvh.prim_ids = huge_page_vec(bvh.prim_ids);
         Ok(bvh)

@@ -3,6 +3,7 @@
 
 use crate::index::BuildError;
 use crate::index::build_budget::per_primitive;
+pub use crate::index::kit::box_tree::layout::Layout;
 
 /// Peak build heap per reference spatial splits may add, in bytes, for the estimate (`bvh` with
 /// the default budget of 4 peaked at 351 B per primitive on the soup and 536 on slivers, where
@@ -122,6 +123,11 @@ pub struct BvhParams {
     /// [`SPLIT_BUDGET`]; default 4 (the `slivers` scene needs 4 for `bvh8` to beat the grid).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub split_budget: Option<f32>,
+    /// Where the inner nodes sit in memory, applied after the build ([`Layout`]): `dfs` (the
+    /// builder's depth-first order, default), `veb` (van Emde Boas by height) or `treelet`
+    /// (page-sized treelets by surface area). The tree, its hits and its counters are the same.
+    #[serde(skip_serializing_if = "Layout::is_default")]
+    pub layout: Layout,
 }
 
 /// Checked build settings.
@@ -261,6 +267,22 @@ mod tests {
             let e = bad.config().unwrap_err().to_string();
             assert!(e.contains("out of range"), "{e}");
         }
+    }
+
+    #[test]
+    fn layouts_parse_by_name_and_the_default_is_left_out() {
+        for l in Layout::ALL {
+            let p: BvhParams = toml::from_str(&format!("layout = \"{}\"", l.name())).unwrap();
+            assert_eq!(p.layout, l);
+            let shown = toml::to_string(&p).unwrap();
+            assert_eq!(shown.contains("layout"), l != Layout::Dfs, "{shown}");
+        }
+        let e = toml::from_str::<BvhParams>("layout = \"zorder\"").unwrap_err();
+        let e = e.to_string();
+        assert!(
+            e.contains("zorder") && e.contains("`dfs`, `veb`, `treelet`"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -2,14 +2,16 @@
 //! the leaves and the primitive ids stay; every child box is recomputed bottom up from the
 //! primitives' new bounds.
 //!
-//! Children follow their parent in the node array (the build is depth first), so one backward
-//! pass sees every child before its parent. The leaves' boxes, the part that reads the scene,
+//! Children follow their parent in the node array (the build is depth first, and every node
+//! layout keeps children after their parent: [`crate::index::kit::box_tree::layout`]), so one
+//! backward pass sees every child before its parent. The leaves' boxes, the part that reads the scene,
 //! are computed in parallel first. With spatial splits a leaf's box becomes its primitives'
 //! whole bounds (no longer clipped): larger, still holding every point a ray can hit there, so
 //! the hits are unchanged.
 
 use crate::geometry::Aabb;
 use crate::index::BuildError;
+use crate::index::kit::box_tree::layout::children_after_parents;
 use crate::index::kit::box_tree::node::{Child, Node};
 use crate::scene::Geometry;
 use rayon::prelude::*;
@@ -55,7 +57,7 @@ pub(crate) fn check_same_count<G: Geometry>(
     }
 }
 
-/// Recomputes the boxes of `nodes` (depth first, children after parents) and returns the
+/// Recomputes the boxes of `nodes` (children after parents, in any layout) and returns the
 /// root's box.
 pub(super) fn refit_nodes<G: Geometry>(
     geom: &G,
@@ -70,6 +72,10 @@ pub(super) fn refit_nodes<G: Geometry>(
     if root.is_leaf() {
         return leaf(root);
     }
+    debug_assert!(
+        children_after_parents(nodes),
+        "the backward pass needs children last"
+    );
     let leaf_boxes: Vec<[Aabb; 2]> = nodes
         .par_iter()
         .map(|n| {

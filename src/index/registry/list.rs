@@ -205,4 +205,38 @@ mod tests {
             .unwrap();
         assert!(err.to_string().contains("unknown field"), "{err}");
     }
+
+    /// The box trees' `layout` reaches the build; an unknown value is a parameter error that
+    /// names the index and the accepted values, as an unknown preset is.
+    #[test]
+    fn layout_specs_build_or_name_the_choices() {
+        let g = SceneGeometry {
+            triangles: std::sync::Arc::from(crate::scene::generators::icosphere(2)),
+            ..Default::default()
+        };
+        for name in ["bvh", "bvh4", "bvh8"] {
+            let spec: IndexSpec = format!("{name}:layout=\"veb\"").parse().unwrap();
+            let index = build_index(&spec, &g, TriangleKernelKind::Watertight).unwrap();
+            assert!(
+                index.params().contains("layout = \"veb\""),
+                "{}",
+                index.params()
+            );
+            let plain = build_index(&IndexSpec::named(name), &g, TriangleKernelKind::Watertight);
+            assert!(
+                !plain.unwrap().params().contains("layout"),
+                "the default is left out"
+            );
+            let bad: IndexSpec = format!("{name}:layout=\"zorder\"").parse().unwrap();
+            let err = build_index(&bad, &g, TriangleKernelKind::Watertight)
+                .err()
+                .unwrap();
+            assert!(matches!(err, BuildError::Params { .. }), "{err}");
+            let text = err.to_string();
+            assert!(
+                text.contains(name) && text.contains("zorder") && text.contains("`veb`"),
+                "{text}"
+            );
+        }
+    }
 }

@@ -18,6 +18,7 @@ mod traverse;
 
 use crate::geometry::{Aabb, Ray};
 use crate::index::bvh::{Bvh, BvhParams};
+use crate::index::kit::box_tree::layout;
 use crate::index::kit::box_tree::leaves::{BLOCK_LANES, LeafStore};
 use crate::index::kit::box_tree::node::Child;
 use crate::index::kit::box_tree::{stream, tree, walk};
@@ -64,6 +65,9 @@ impl<const C: usize> Index for WideBvh<C> {
         let (root_bounds, root, nodes, prim_ids) = binary.parts();
         let tris = LeafStore::block_triangles(geom, prim_ids);
         let mut wide = collapse::<C>(root, nodes, leaf_lanes);
+        // Before the leaf store: triangle blocks are stored in the order their leaves are met
+        // here, so they follow the node order too.
+        layout::apply(params.layout, &mut wide.root, &mut wide.nodes);
         let leaf_refs = wide.nodes.iter_mut().flat_map(|n| {
             let kids = n.width();
             n.children.iter_mut().flatten().take(kids)
@@ -202,3 +206,7 @@ impl<const C: usize> WideBvh<C> {
         (kids, leaf_sizes)
     }
 }
+
+#[cfg(test)]
+#[path = "layout_tests.rs"]
+mod layout_tests;

@@ -13,6 +13,7 @@
 
 use crate::geometry::Aabb;
 use crate::index::kit::box_tree::lanes::F8;
+use crate::index::kit::box_tree::layout::LayoutNode;
 use crate::index::kit::box_tree::node::{Child, Node};
 use crate::index::kit::box_tree::slab::{SlabRay, hit_near_far};
 use glam::{Vec3A, Vec4};
@@ -94,6 +95,27 @@ impl<const C: usize> WideNode<C> {
             let (mask, enter) = hit_near_far::<SAFE, Vec4>(near, far, ray, t_max);
             let [a, b, c, d] = enter.to_array();
             (mask, [a, b, c, d, 0.0, 0.0, 0.0, 0.0])
+        }
+    }
+}
+
+impl<const C: usize> LayoutNode for WideNode<C> {
+    fn inner_children(&self, mut f: impl FnMut(u32, f32)) {
+        for i in 0..self.width() {
+            let c = self.child(i);
+            if !c.is_leaf() {
+                f(c.index, self.child_box(i).surface_area());
+            }
+        }
+    }
+
+    /// Lanes past the children keep their default reference.
+    fn renumber(&mut self, new_of: &[u32]) {
+        let width = self.width();
+        for c in self.children.as_flattened_mut().iter_mut().take(width) {
+            if !c.is_leaf() {
+                c.index = new_of[c.index as usize];
+            }
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Refitting the wide BVH to moved primitives ([`crate::index::Index::refit`]): the nodes, the
 //! leaves and their order stay; the leaves' triangle copies are refreshed from the geometry and
-//! every child box is recomputed bottom up (children follow their parent in the node array, so
-//! one backward pass sees every child first). The parts that read the scene (the triangle
+//! every child box is recomputed bottom up (children follow their parent in the node array, in
+//! the collapse's order and in every node layout, so one backward pass sees every child first). The parts that read the scene (the triangle
 //! blocks and the leaves' boxes) run in parallel.
 
 use super::node::WideNode;
@@ -9,6 +9,7 @@ use crate::geometry::Aabb;
 use crate::geometry::triangle::lanes::TriangleBlock;
 use crate::index::BuildError;
 use crate::index::bvh::refit::leaf_bounds;
+use crate::index::kit::box_tree::layout::children_after_parents;
 use crate::index::kit::box_tree::leaves::{BLOCK_LANES, LeafStore};
 use crate::index::kit::box_tree::node::Child;
 use crate::scene::Geometry;
@@ -72,6 +73,10 @@ pub(super) fn refit_nodes<const C: usize, G: Geometry>(
     if root.is_leaf() {
         return leaf_box(geom, store, root, index);
     }
+    debug_assert!(
+        children_after_parents(nodes),
+        "the backward pass needs children last"
+    );
     let leaf_boxes: Vec<[Aabb; MAX_WIDTH]> = nodes
         .par_iter()
         .map(|n| {
