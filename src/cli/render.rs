@@ -51,7 +51,8 @@ pub struct RenderArgs {
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
     /// Trace mode of each row's camera rays: single, stream, last-hit, packets4, packets8,
-    /// packets16, reorder (the image is the same in every mode; the time is not).
+    /// packets16, beams4, beams8, beams16, reorder (the image is the same in every mode; the
+    /// time is not).
     #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
     mode: TraceMode,
 }

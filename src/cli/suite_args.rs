@@ -52,8 +52,9 @@ pub struct SuiteArgs {
     /// 16-ray packets; rows `INDEX+stream` only for indices that have one), last-hit (the
     /// previous ray's hit primitive tested first), packets4, packets8, packets16 (the coherent
     /// sets in packets of neighbouring rays; bvh, bvh4 and bvh8 walk packets, the others ray by
-    /// ray), reorder (the batch sorted by origin and direction, then one query at a time; rows
-    /// `INDEX+reorder`).
+    /// ray), beams4, beams8, beams16 (the same packets traced as beams with a frustum test;
+    /// rows only for bvh, bvh4 and bvh8), reorder (the batch sorted by origin and direction,
+    /// then one query at a time; rows `INDEX+reorder`).
     #[arg(long, value_delimiter = ',', value_parser = TraceMode::parse, default_value = "single,stream")]
     pub modes: Vec<TraceMode>,
     /// Shorthand: add `last-hit` to `--modes`.

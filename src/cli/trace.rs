@@ -36,7 +36,8 @@ pub struct TraceArgs {
     #[arg(long, default_value = "exact", value_parser = parse_kernel)]
     kernel: TriangleKernelKind,
     /// Trace mode: single (one query at a time), stream (the index's own batch technique),
-    /// last-hit, packets4, packets8, packets16, reorder (sorted by origin and direction first).
+    /// last-hit, packets4, packets8, packets16, beams4, beams8, beams16 (bvh, bvh4, bvh8; other
+    /// indices trace beams ray by ray), reorder (sorted by origin and direction first).
     #[arg(long, default_value = "single", value_parser = TraceMode::parse)]
     mode: TraceMode,
     /// The rays are an image this many rays wide in raster order (the protocol's `primary` set:

@@ -287,10 +287,10 @@ fn note_failed(run: &SetRun, index: &dyn TraceIndex, p: &str, res: &mut SuiteRes
     res.fail(run.scene, index.name(), what, format!("failed: {p}"));
 }
 
-/// Whether the suite traces `set` in `mode`: packets only on the coherent sets.
+/// Whether the suite traces `set` in `mode`: packets and beams only on the coherent sets.
 fn applies(mode: TraceMode, set: RaySet) -> bool {
     match mode {
-        TraceMode::Packets(_) => set.is_coherent(),
+        TraceMode::Packets(_) | TraceMode::Beams(_) => set.is_coherent(),
         _ => true,
     }
 }

@@ -8,6 +8,7 @@ mod partition_kit;
 mod accuracy;
 mod agreement;
 mod animate;
+mod beams;
 mod bounded_reads;
 mod bsp;
 mod bvh;

@@ -2,6 +2,8 @@
 //! neighbouring rays with one shared traversal and an active mask, the other indices ray by ray;
 //! every ray gets brute force's closest hit bit for bit and the same any-hit answer, whether the
 //! packets are row segments of the batch or screen tiles of an image (`closest_hits_image`).
+//! The beam modes (`beams4`, `beams8`, `beams16`: the same packets, `bvh`, `bvh4` and `bvh8`
+//! tracing them as beams) are checked on the same rays; `beams.rs` checks them on the bunny.
 
 use crate::common;
 
@@ -28,15 +30,23 @@ fn packets_of_sixteen_change_no_hit() {
     common::assert_mode_agrees(TraceMode::Packets(16));
 }
 
-/// The packet modes.
-const MODES: [TraceMode; 3] = [
+#[test]
+fn beams_of_sixteen_change_no_hit() {
+    common::assert_mode_agrees(TraceMode::Beams(16));
+}
+
+/// The packet and beam modes.
+const MODES: [TraceMode; 6] = [
     TraceMode::Packets(4),
     TraceMode::Packets(8),
     TraceMode::Packets(16),
+    TraceMode::Beams(4),
+    TraceMode::Beams(8),
+    TraceMode::Beams(16),
 ];
 
 /// Asserts that every index of ours returns brute force's closest hits (counted and not) and
-/// any-hit answers on `rays` over `scene`, traced in packets of 4, 8 and 16: of consecutive
+/// any-hit answers on `rays` over `scene`, traced in packets and beams of 4, 8 and 16: of consecutive
 /// rays, and with `width` also from the tiles of an image `width` rays wide.
 fn assert_packets_agree(scene: &Scene, rays: &[Ray], width: Option<usize>) {
     let geom = scene.geometry();

@@ -266,6 +266,9 @@ impl TraceIndex for Logged {
     fn has_single(&self) -> bool {
         self.inner.has_single()
     }
+    fn has_beams(&self) -> bool {
+        self.inner.has_beams()
+    }
     fn refused(&self, rays: &[Ray]) -> Option<(usize, &'static str)> {
         self.inner.refused(rays)
     }

@@ -108,6 +108,7 @@ impl Index for Bvh {
 
 impl BatchIndex for Bvh {
     crate::index::kit::box_tree::packet::tree_packets!();
+    crate::index::kit::box_tree::beam::tree_beams!();
 }
 
 impl Bvh {

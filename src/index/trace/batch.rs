@@ -22,6 +22,11 @@ pub trait BatchIndex: Index {
     /// (`embree-p16`), which then gets only `+stream` rows.
     const SINGLE: bool = true;
 
+    /// Whether the index traces packets as beams ([`BatchIndex::closest_hits_beam`] is
+    /// overridden): the suite then gives it `INDEX+beams16` rows (and `beams4`, `beams8`). An
+    /// index without beams gets no beam row.
+    const BEAMS: bool = false;
+
     /// The batch `rays` in the index's own ray form for tracing in `mode` ([`super::own_rays`]),
     /// made before the timed passes so that they time the index's calls and not the conversion;
     /// `None` (the default) when the index traces our `Ray` as it is in that mode. A peer whose
@@ -87,6 +92,32 @@ pub trait BatchIndex: Index {
     /// Any-hit results of a packet, as [`BatchIndex::closest_hits_packet`].
     #[inline]
     fn any_hits_packet<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [bool],
+        stats: &mut [S],
+    ) {
+        each::<AnyHit, _, _, _>(self, geom, rays, out, stats);
+    }
+
+    /// Closest hits of a packet (as [`BatchIndex::closest_hits_packet`]) traced as a beam
+    /// ([`super::TraceMode::Beams`]). By default ray by ray; an index with beam traversal
+    /// overrides it and sets [`BatchIndex::BEAMS`].
+    #[inline]
+    fn closest_hits_beam<G: Geometry, S: Stats>(
+        &self,
+        geom: &G,
+        rays: &[Ray],
+        out: &mut [Option<Hit>],
+        stats: &mut [S],
+    ) {
+        each::<Closest, _, _, _>(self, geom, rays, out, stats);
+    }
+
+    /// Any-hit results of a packet traced as a beam, as [`BatchIndex::closest_hits_beam`].
+    #[inline]
+    fn any_hits_beam<G: Geometry, S: Stats>(
         &self,
         geom: &G,
         rays: &[Ray],

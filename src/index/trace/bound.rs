@@ -87,6 +87,9 @@ impl<I: BatchIndex, G: Geometry> TraceIndex for BoundIndex<I, G> {
     fn has_single(&self) -> bool {
         I::SINGLE
     }
+    fn has_beams(&self) -> bool {
+        I::BEAMS
+    }
     fn refused(&self, rays: &[Ray]) -> Option<(usize, &'static str)> {
         let mut why = None;
         let count = rays

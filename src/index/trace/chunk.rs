@@ -1,7 +1,8 @@
 //! How a worker traces its chunk of a batch, in one of the [`TraceMode`]s: one query at a time
 //! ([`crate::index::Index::closest_hit`] per ray), with the index's own batch technique
 //! ([`BatchIndex::closest_hits_stream`]), with the last hit tested first ([`super::last_hit`]),
-//! or in packets of neighbouring rays ([`BatchIndex::closest_hits_packet`]).
+//! or in packets of neighbouring rays ([`BatchIndex::closest_hits_packet`], or as beams:
+//! [`BatchIndex::closest_hits_beam`]).
 //! Rays of a chunk are consecutive in the batch (image order for camera sets), and each chunk
 //! starts with an empty last-hit cache, so results never depend on the thread count.
 
@@ -34,14 +35,15 @@ pub fn trace_chunk<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
                 *o = Q::last_hit(index, &mut range, r, &mut last, s);
             }
         }
-        TraceMode::Packets(n) => {
+        TraceMode::Packets(n) | TraceMode::Beams(n) => {
+            let beams = matches!(mode, TraceMode::Beams(_));
             let n = n.clamp(1, MAX_PACKET);
             for ((r, o), s) in rays
                 .chunks(n)
                 .zip(out.chunks_mut(n))
                 .zip(stats.chunks_mut(n))
             {
-                Q::batch::<true, _, _, _>(index, geom, r, o, s);
+                Q::packet(beams, index, geom, r, o, s);
             }
         }
     }

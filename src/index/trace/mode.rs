@@ -8,8 +8,8 @@ pub const MAX_PACKET: usize = 16;
 ///
 /// What a mode may do: [`TraceMode::Single`] and [`TraceMode::LastHit`] answer one query at a
 /// time (one ray's walk finishes before the next ray's starts; nothing is shared between rays
-/// but the last-hit cache); [`TraceMode::Stream`] and [`TraceMode::Packets`] may trace several
-/// rays of a chunk at once (interleaved or lockstep walks, SIMD across rays);
+/// but the last-hit cache); [`TraceMode::Stream`], [`TraceMode::Packets`] and [`TraceMode::Beams`]
+/// may trace several rays of a chunk at once (interleaved or lockstep walks, SIMD across rays);
 /// [`TraceMode::Reorder`] may change the order of the batch's rays, and answers each one query at
 /// a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -24,6 +24,10 @@ pub enum TraceMode {
     LastHit,
     /// Packets of this many neighbouring rays (4, 8 or 16; [`super::tiles`] says which).
     Packets(usize),
+    /// The same packets as [`TraceMode::Packets`], traced as beams: the first active ray
+    /// decides a node, an interval (frustum) test culls for the whole packet
+    /// ([`crate::index::BatchIndex::BEAMS`]; only indices with the technique are traced so).
+    Beams(usize),
     /// The batch sorted by a coherence key, then one query at a time in that order
     /// ([`super::reorder`]); the sort is part of the mode's time.
     Reorder,
@@ -34,7 +38,7 @@ pub enum TraceMode {
 pub enum ModeFamily {
     /// `single` and `last-hit`.
     OneAtATime,
-    /// `stream`, the packet modes and `reorder`.
+    /// `stream`, the packet and beam modes and `reorder`.
     Batch,
 }
 
@@ -57,12 +61,13 @@ impl TraceMode {
             TraceMode::Stream => "stream".into(),
             TraceMode::LastHit => "last-hit".into(),
             TraceMode::Packets(n) => format!("packets{n}"),
+            TraceMode::Beams(n) => format!("beams{n}"),
             TraceMode::Reorder => "reorder".into(),
         }
     }
 
     /// A mode from its label (`single`, `stream`, `last-hit`, `packets4`, `packets8`,
-    /// `packets16`, `reorder`).
+    /// `packets16`, `beams4`, `beams8`, `beams16`, `reorder`).
     pub fn parse(s: &str) -> Result<TraceMode, String> {
         match s.trim() {
             "single" => Ok(TraceMode::Single),
@@ -71,10 +76,13 @@ impl TraceMode {
             "packets4" => Ok(TraceMode::Packets(4)),
             "packets8" => Ok(TraceMode::Packets(8)),
             "packets16" => Ok(TraceMode::Packets(16)),
+            "beams4" => Ok(TraceMode::Beams(4)),
+            "beams8" => Ok(TraceMode::Beams(8)),
+            "beams16" => Ok(TraceMode::Beams(16)),
             "reorder" => Ok(TraceMode::Reorder),
             other => Err(format!(
                 "unknown trace mode '{other}': choose from single, stream, last-hit, packets4, \
-                 packets8, packets16, reorder"
+                 packets8, packets16, beams4, beams8, beams16, reorder"
             )),
         }
     }
@@ -83,7 +91,10 @@ impl TraceMode {
     pub fn family(self) -> ModeFamily {
         match self {
             TraceMode::Single | TraceMode::LastHit => ModeFamily::OneAtATime,
-            TraceMode::Stream | TraceMode::Packets(_) | TraceMode::Reorder => ModeFamily::Batch,
+            TraceMode::Stream
+            | TraceMode::Packets(_)
+            | TraceMode::Beams(_)
+            | TraceMode::Reorder => ModeFamily::Batch,
         }
     }
 }

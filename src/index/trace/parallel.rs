@@ -35,10 +35,11 @@ pub fn trace_in_parallel<Q: Query, I: BatchIndex, G: Geometry>(
         return trace_reordered::<Q, _, _>(index, geom, rays, out, counters);
     }
     let tiled = match (mode, width) {
-        (TraceMode::Packets(n), Some(w)) if w > 0 => Some((n, w)),
+        (TraceMode::Packets(n), Some(w)) if w > 0 => Some((n, w, false)),
+        (TraceMode::Beams(n), Some(w)) if w > 0 => Some((n, w, true)),
         _ => None,
     };
-    let item = tiled.map_or(CHUNK, |(_, w)| BAND_ROWS * w);
+    let item = tiled.map_or(CHUNK, |(_, w, _)| BAND_ROWS * w);
     let work = rays.par_chunks(item).zip(out.par_chunks_mut(item));
     match counters {
         Some(c) => {
@@ -72,19 +73,21 @@ pub fn each_chunk<T: Sync, A: Send>(
         .for_each(|(records, out)| trace(records, out));
 }
 
-/// One work item: a band of an image in tiles (`tiled`: the packet size and the image width),
-/// or a chunk in `mode`.
+/// One work item: a band of an image in tiles (`tiled`: the packet size, the image width and
+/// whether the packets are traced as beams), or a chunk in `mode`.
 fn trace_item<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
     index: &I,
     geom: &G,
     mode: TraceMode,
-    tiled: Option<(usize, usize)>,
+    tiled: Option<(usize, usize, bool)>,
     rays: &[Ray],
     out: &mut [Q::Answer],
     stats: &mut [S],
 ) {
     match tiled {
-        Some((n, w)) => trace_band::<Q, _, _, _>(index, geom, n, w, rays, out, stats),
+        Some((n, w, beams)) => {
+            trace_band::<Q, _, _, _>(index, geom, (n, beams), w, rays, out, stats)
+        }
         None => trace_chunk::<Q, _, _, _>(index, geom, mode, rays, out, stats),
     }
 }

@@ -21,6 +21,31 @@ pub trait Query: HitQuery {
         out: &mut [Self::Answer],
         stats: &mut [S],
     );
+    /// One packet traced as a beam ([`BatchIndex::closest_hits_beam`] or `any_hits_beam`).
+    fn beam<I: BatchIndex, G: Geometry, S: Stats>(
+        i: &I,
+        g: &G,
+        rays: &[Ray],
+        out: &mut [Self::Answer],
+        stats: &mut [S],
+    );
+    /// One packet in packet mode `mode` ([`super::TraceMode::Packets`]: [`Query::batch`] with
+    /// `PACKET`; [`super::TraceMode::Beams`]: [`Query::beam`]).
+    #[inline]
+    fn packet<I: BatchIndex, G: Geometry, S: Stats>(
+        beams: bool,
+        i: &I,
+        g: &G,
+        rays: &[Ray],
+        out: &mut [Self::Answer],
+        stats: &mut [S],
+    ) {
+        if beams {
+            Self::beam(i, g, rays, out, stats)
+        } else {
+            Self::batch::<true, _, _, _>(i, g, rays, out, stats)
+        }
+    }
     /// One ray with the last-hit cache ([`last_hit::closest_hit`] or [`last_hit::any_hit`]).
     fn last_hit<I: Index, G: Geometry, S: Stats>(
         i: &I,
@@ -33,7 +58,7 @@ pub trait Query: HitQuery {
 
 /// `impl Query for $kind`: the [`BatchIndex`] methods and the last-hit function that answer it.
 macro_rules! answered_by {
-    ($kind:ty, $chunk:ident, $packet:ident, $last_hit:path) => {
+    ($kind:ty, $chunk:ident, $packet:ident, $beam:ident, $last_hit:path) => {
         impl Query for $kind {
             #[inline]
             fn batch<const PACKET: bool, I: BatchIndex, G: Geometry, S: Stats>(
@@ -48,6 +73,16 @@ macro_rules! answered_by {
                 } else {
                     i.$chunk(g, r, o, s)
                 }
+            }
+            #[inline]
+            fn beam<I: BatchIndex, G: Geometry, S: Stats>(
+                i: &I,
+                g: &G,
+                r: &[Ray],
+                o: &mut [Self::Answer],
+                s: &mut [S],
+            ) {
+                i.$beam(g, r, o, s)
             }
             #[inline]
             fn last_hit<I: Index, G: Geometry, S: Stats>(
@@ -67,6 +102,13 @@ answered_by!(
     Closest,
     closest_hits_stream,
     closest_hits_packet,
+    closest_hits_beam,
     last_hit::closest_hit
 );
-answered_by!(AnyHit, any_hits_stream, any_hits_packet, last_hit::any_hit);
+answered_by!(
+    AnyHit,
+    any_hits_stream,
+    any_hits_packet,
+    any_hits_beam,
+    last_hit::any_hit
+);

@@ -47,11 +47,11 @@ pub fn square_side(len: usize) -> Option<usize> {
 /// Answers query `Q` for one band of an image `width` rays wide (at most [`BAND_ROWS`] rows in
 /// raster order, the last possibly partial) in packets of `n` rays from tiles of
 /// [`tile_shape`]`(n)`, lane by lane in raster order within the tile (`out` and `stats` as
-/// long as `rays`).
+/// long as `rays`), each packet traced as a beam when `beams` ([`Query::packet`]).
 pub fn trace_band<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
     index: &I,
     geom: &G,
-    n: usize,
+    (n, beams): (usize, bool),
     width: usize,
     rays: &[Ray],
     out: &mut [Q::Answer],
@@ -65,7 +65,8 @@ pub fn trace_band<Q: Query, I: BatchIndex, G: Geometry, S: Stats>(
         for (s, &i) in lanes_stats.iter_mut().zip(at) {
             *s = std::mem::take(&mut stats[i]);
         }
-        Q::batch::<true, _, _, _>(
+        Q::packet(
+            beams,
             index,
             geom,
             &packet[..m],

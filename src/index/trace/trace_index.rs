@@ -22,11 +22,18 @@ pub trait TraceIndex: Send + Sync {
     fn has_stream(&self) -> bool;
     /// Whether its one-query-at-a-time rows are its own ([`crate::index::BatchIndex::SINGLE`]).
     fn has_single(&self) -> bool;
+    /// Whether the index traces packets as beams ([`crate::index::BatchIndex::BEAMS`]); by
+    /// default not.
+    fn has_beams(&self) -> bool {
+        false
+    }
     /// Whether the suite traces it in `mode`: `stream` only with a batch technique of its own,
-    /// the one-at-a-time modes only when they are its own.
+    /// the beam modes only with beam traversal, the one-at-a-time modes only when they are its
+    /// own.
     fn traces_in(&self, mode: TraceMode) -> bool {
         match mode {
             TraceMode::Stream => self.has_stream(),
+            TraceMode::Beams(_) => self.has_beams(),
             TraceMode::Single | TraceMode::LastHit | TraceMode::Reorder => self.has_single(),
             TraceMode::Packets(_) => true,
         }

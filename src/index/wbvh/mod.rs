@@ -152,6 +152,7 @@ impl<const C: usize> Index for WideBvh<C> {
 
 impl<const C: usize> BatchIndex for WideBvh<C> {
     crate::index::kit::box_tree::packet::tree_packets!();
+    crate::index::kit::box_tree::beam::tree_beams!();
 
     const STREAM: bool = true;
 

@@ -111,7 +111,7 @@ pub(crate) trait PacketTree<const W: usize, const N: usize>: BoxTree<N> {
 /// Calls `f` on the counters of every ray in `active`; nothing for zero-sized counters
 /// ([`crate::index::NoStats`] of the timed passes), decided at compile time.
 #[inline(always)]
-fn count<S: Stats>(active: u32, stats: &mut [S], f: impl Fn(&mut S)) {
+pub(super) fn count<S: Stats>(active: u32, stats: &mut [S], f: impl Fn(&mut S)) {
     if std::mem::size_of::<S>() == 0 {
         return;
     }
@@ -232,7 +232,7 @@ const _: () = assert!(
 /// incoherent 16-ray packets from 0.25x of single rays (no switch) to about 0.8x (`bvh8`) and
 /// 1.1x (`bvh`); switching later (12 or 16 of 16) cost the primary packets of `bvh` a fifth.
 #[inline(always)]
-fn go_single<V: Lanes>(active: u32) -> bool {
+pub(super) fn go_single<V: Lanes>(active: u32) -> bool {
     2 * active.count_ones() < V::WIDTH as u32
 }
 
