@@ -5,7 +5,6 @@ use super::spec::IndexSpec;
 use crate::geometry::TriangleKernelKind;
 use crate::index::{BatchIndex, BuildError, Index, TraceIndex, build_index_on};
 use crate::scene::{FromScene, GeometryVisitor, SceneGeometry, with_geometry};
-use serde::Deserialize;
 
 /// How the registry builds one of its indices.
 pub(super) type BuildFn =
@@ -25,11 +24,16 @@ pub(super) fn estimate_dyn<I: Index>(
 
 /// Parses the typed parameters of `I` from a spec (unknown keys rejected).
 pub fn parse_params<I: Index>(spec: &IndexSpec) -> Result<I::Params, BuildError> {
-    I::Params::deserialize(toml::Value::Table(spec.params.clone())).map_err(|e| {
-        BuildError::Params {
-            index: spec.name.clone(),
-            message: e.to_string(),
-        }
+    parse_typed::<I::Params>(spec)
+}
+
+/// Parses a spec's parameters as `P` (unknown keys rejected by `P`).
+pub(super) fn parse_typed<P: serde::de::DeserializeOwned>(
+    spec: &IndexSpec,
+) -> Result<P, BuildError> {
+    P::deserialize(toml::Value::Table(spec.params.clone())).map_err(|e| BuildError::Params {
+        index: spec.name.clone(),
+        message: e.to_string(),
     })
 }
 

@@ -1,10 +1,11 @@
 //! The list of every index the suite knows ([`REGISTRY`], in report order) and whose tests each
 //! uses ([`Kind`]), the lookups by name, and building an index from its spec ([`build_index`]).
 
-use super::build::{BuildFn, EstimateFn, build_dyn, estimate_dyn};
+use super::build::{BuildFn, EstimateFn, build_dyn, estimate_dyn, parse_typed};
 use super::spec::{IndexSpec, parse_params_list};
 use crate::geometry::TriangleKernelKind;
 use crate::index::peers::{ObvhsBvh2, ObvhsCwBvh};
+use crate::index::tlas::TlasParams;
 use crate::index::{
     BatchIndex, BruteForce, Bsp, BuildError, Bvh, Bvh4, Bvh8, Grid, Grid2, KdTree, NeighborOctree,
     TopDownOctree, TraceIndex,
@@ -90,11 +91,51 @@ const REGISTRY: &[Entry] = &[
     gpu_entry::<crate::index::gpu::GridCells>("gpu-grid"),
     Entry {
         name: "tlas",
-        build: crate::index::tlas::build,
-        estimate: crate::index::tlas::estimate,
+        build: build_tlas,
+        estimate: estimate_tlas,
         kind: Kind::Instanced,
     },
 ];
+
+/// `tlas`'s parameters and the spec of its `inner` index, which must be one of ours.
+fn tlas_params(spec: &IndexSpec) -> Result<(TlasParams, IndexSpec), BuildError> {
+    let params: TlasParams = parse_typed(spec)?;
+    let bad = |message: String| BuildError::Params {
+        index: spec.name.clone(),
+        message,
+    };
+    let inner: IndexSpec = (params.inner.parse()).map_err(|e| bad(format!("inner: {e}")))?;
+    if kind_of(&inner.name) != Some(Kind::Ours) {
+        let ours: Vec<&str> = (REGISTRY.iter().filter(|e| e.kind == Kind::Ours))
+            .map(|e| e.name)
+            .collect();
+        return Err(bad(format!(
+            "inner = \"{}\" is not one of our indices: give one of {}",
+            inner.name,
+            ours.join(", ")
+        )));
+    }
+    params.check_top(&spec.name)?;
+    Ok((params, inner))
+}
+
+/// Builds `tlas` ([`crate::index::tlas`]), each mesh's structure by `inner` through
+/// [`build_index`] with the run's kernel.
+fn build_tlas(
+    spec: &IndexSpec,
+    geom: &SceneGeometry,
+    kernel: TriangleKernelKind,
+) -> Result<Box<dyn TraceIndex>, BuildError> {
+    let (params, inner) = tlas_params(spec)?;
+    let build_mesh = |mesh: &SceneGeometry| build_index(&inner, mesh, kernel);
+    crate::index::tlas::build(&spec.name, &params, geom, &build_mesh)
+}
+
+/// `tlas` has no estimate of its own ([`crate::index::tlas::build`] says why); its parameters
+/// are still checked.
+fn estimate_tlas(spec: &IndexSpec, _prims: usize) -> Result<Option<usize>, BuildError> {
+    tlas_params(spec).map(|_| None)
+}
 
 /// Names of the indices a run builds when none are named, in report order: every registered
 /// one but `tlas` ([`Kind::Instanced`]), which traces only scenes with instances and is built

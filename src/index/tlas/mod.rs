@@ -15,6 +15,9 @@
 //! other index traces, and brute force checks in a run) `tlas` is classified as peers are (tie,
 //! `t off`, wrong), never failed ([`crate::index::Kind::Instanced`]).
 //!
+//! `index::registry` builds it (parsing `inner` into a spec of ours and passing its builder);
+//! `tests/it/instances.rs` checks the contract.
+//!
 //! Counting: the top level's steps and instance tests are what its walk reports, the work inside
 //! the meshes is not seen by it, so the index reports its tests and steps per ray as not counted
 //! rather than partial.
@@ -23,8 +26,7 @@ mod instance_geometry;
 
 pub use instance_geometry::InstanceGeometry;
 
-use crate::geometry::{Hit, Ray, TriangleKernelKind};
-use crate::index::registry::{IndexSpec, Kind, build_index, kind_of};
+use crate::geometry::{Hit, Ray};
 use crate::index::{
     BruteForce, BuildError, Bvh, Bvh4, Bvh8, Counters, IndexInfo, TraceIndex, TraceMode,
     build_index_on,
@@ -59,52 +61,40 @@ impl Default for TlasParams {
 const TOPS: [&str; 4] = ["bvh", "bvh4", "bvh8", "brute"];
 
 impl TlasParams {
-    fn parse(spec: &IndexSpec) -> Result<(TlasParams, IndexSpec), BuildError> {
-        let bad = |message: String| BuildError::Params {
-            index: spec.name.clone(),
-            message,
-        };
-        let params = TlasParams::deserialize(toml::Value::Table(spec.params.clone()))
-            .map_err(|e| bad(e.to_string()))?;
-        let inner: IndexSpec = params
-            .inner
-            .parse()
-            .map_err(|e| bad(format!("inner: {e}")))?;
-        if kind_of(&inner.name) != Some(Kind::Ours) {
-            return Err(bad(format!(
-                "inner = \"{}\" is not one of our indices: give bvh, bvh4, bvh8, grid, grid2, \
-                 octree, octree-topdown, kdtree, bsp or brute",
-                inner.name
-            )));
+    /// Checks `top` (the registry checks that `inner` names one of our indices).
+    pub fn check_top(&self, index: &str) -> Result<(), BuildError> {
+        match TOPS.contains(&self.top.as_str()) {
+            true => Ok(()),
+            false => Err(BuildError::Params {
+                index: index.to_owned(),
+                message: format!(
+                    "top = \"{}\" is not a top level: give one of {}",
+                    self.top,
+                    TOPS.join(", ")
+                ),
+            }),
         }
-        if !TOPS.contains(&params.top.as_str()) {
-            return Err(bad(format!(
-                "top = \"{}\" is not a top level: give one of {}",
-                params.top,
-                TOPS.join(", ")
-            )));
-        }
-        Ok((params, inner))
     }
 }
 
-/// `tlas` gives no estimate of its own: the count it is given is the flattened scene's, while
-/// it builds each mesh once; each mesh's structure is held to the memory budget by its own
-/// estimate when it is built ([`build_index`]). The parameters are still checked.
-pub(crate) fn estimate(spec: &IndexSpec, _prims: usize) -> Result<Option<usize>, BuildError> {
-    TlasParams::parse(spec).map(|_| None)
-}
+/// A built mesh structure: how `tlas` builds its `inner` index over one mesh (the registry
+/// passes its own builder, with the spec and kernel of the run).
+pub type MeshBuilder<'a> = &'a dyn Fn(&SceneGeometry) -> Result<Box<dyn TraceIndex>, BuildError>;
 
-/// Builds `tlas` over the scene's instances: [`BuildError::Unsupported`] for a scene without
-/// `[[instance]]` entries or with spheres or shapes beside them.
-pub(crate) fn build(
-    spec: &IndexSpec,
+/// Builds `tlas` (named `name`, checked `params`) over the scene's instances, each mesh by
+/// `build_mesh`: [`BuildError::Unsupported`] for a scene without `[[instance]]` entries or with
+/// spheres or shapes beside them. `tlas` gives no estimate of its own (the registry's count is
+/// the flattened scene's, while each mesh is built once): each mesh's structure is held to the
+/// memory budget by its own estimate when `build_mesh` builds it.
+pub fn build(
+    name: &str,
+    params: &TlasParams,
     geom: &SceneGeometry,
-    kernel: TriangleKernelKind,
+    build_mesh: MeshBuilder<'_>,
 ) -> Result<Box<dyn TraceIndex>, BuildError> {
-    let (params, inner) = TlasParams::parse(spec)?;
+    params.check_top(name)?;
     let unsupported = |reason: &str| BuildError::Unsupported {
-        index: spec.name.clone(),
+        index: name.to_owned(),
         reason: reason.into(),
     };
     let Some(set) = geom.instances.clone() else {
@@ -120,7 +110,7 @@ pub(crate) fn build(
     }
     let ((built, build_time), peak) = crate::heap_meter::peak_during(|| {
         let start = Instant::now();
-        let built = build_levels(spec, &params, &inner, set, kernel);
+        let built = build_levels(name, params, set, build_mesh);
         (built, start.elapsed())
     });
     let (top, geometry) = built?;
@@ -128,7 +118,7 @@ pub(crate) fn build(
     info.build_time = build_time;
     info.peak_build_bytes = Some(peak);
     Ok(Box::new(Tlas {
-        name: spec.name.clone(),
+        name: name.to_owned(),
         params: format!("inner={},top={}", params.inner, params.top),
         top,
         geometry,
@@ -138,26 +128,24 @@ pub(crate) fn build(
 
 /// The meshes' structures, then the top level over the instances.
 fn build_levels(
-    spec: &IndexSpec,
+    name: &str,
     params: &TlasParams,
-    inner: &IndexSpec,
     set: Arc<crate::scene::instances::InstanceSet>,
-    kernel: TriangleKernelKind,
+    build_mesh: MeshBuilder<'_>,
 ) -> Result<(Box<dyn TraceIndex>, InstanceGeometry), BuildError> {
     let meshes = (set.meshes.iter())
         .map(|m| {
-            let mesh = SceneGeometry {
+            build_mesh(&SceneGeometry {
                 triangles: m.clone(),
                 ..SceneGeometry::default()
-            };
-            build_index(inner, &mesh, kernel)
+            })
         })
         .collect::<Result<Vec<_>, _>>()?;
     let geometry = InstanceGeometry {
         set,
         meshes: Arc::from(meshes),
     };
-    let (name, g) = (spec.name.as_str(), geometry.clone());
+    let g = geometry.clone();
     let top: Box<dyn TraceIndex> = match params.top.as_str() {
         "bvh" => Box::new(build_index_on::<Bvh, _>(name, g, Default::default())?),
         "bvh4" => Box::new(build_index_on::<Bvh4, _>(name, g, Default::default())?),
@@ -304,6 +292,3 @@ impl TraceIndex for Tlas {
         self.top.any_hits_image(mode, rays, width, out, counters);
     }
 }
-
-#[cfg(test)]
-mod tests;
